@@ -1,0 +1,82 @@
+//! Error type of every fallible public operation.
+//!
+//! Each variant says what was wrong and, where it helps, which parameter. An
+//! operation that returns an error has changed nothing.
+
+use core::fmt;
+
+/// What went wrong in a call into the engine.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Error {
+    /// A float given at the API edge was NaN, infinite, or outside the range a
+    /// [`Scalar`](crate::Scalar) can hold. `what` names the parameter.
+    NotFinite {
+        /// The parameter.
+        what: &'static str,
+    },
+    /// A parameter was outside its documented range (for example a negative
+    /// friction, a zero or negative radius, mass or density). `what` names it.
+    OutOfRange {
+        /// The parameter.
+        what: &'static str,
+    },
+    /// Fewer than three distinct, non-collinear points were given for a polygon.
+    DegeneratePolygon,
+    /// The convex hull of the points has more vertices than a polygon may have.
+    TooManyVertices {
+        /// Vertices on the hull.
+        count: usize,
+        /// The maximum, [`MAX_POLYGON_VERTICES`](crate::geometry::MAX_POLYGON_VERTICES).
+        max: usize,
+    },
+    /// A position (or a body's extent around it) lies outside the world bounds.
+    OutsideBounds,
+    /// The time step was zero, negative, or above [`MAX_TIME_STEP`](crate::MAX_TIME_STEP).
+    InvalidTimeStep,
+    /// The handle refers to an object that was removed (or never existed in this world).
+    StaleHandle,
+    /// A fixed-capacity store is full. `what` names it.
+    CapacityFull {
+        /// The store.
+        what: &'static str,
+    },
+    /// The operation does not apply to this object in its current state
+    /// (for example setting the velocity of a static body). `what` says which.
+    InvalidOperation {
+        /// The operation.
+        what: &'static str,
+    },
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NotFinite { what } => write!(
+                f,
+                "`{what}` is NaN, infinite or out of the fixed-point range"
+            ),
+            Self::OutOfRange { what } => write!(f, "`{what}` is outside its allowed range"),
+            Self::DegeneratePolygon => {
+                f.write_str("a polygon needs at least 3 distinct, non-collinear points")
+            }
+            Self::TooManyVertices { count, max } => {
+                write!(
+                    f,
+                    "the convex hull has {count} vertices; at most {max} are allowed"
+                )
+            }
+            Self::OutsideBounds => f.write_str("the position lies outside the world bounds"),
+            Self::InvalidTimeStep => {
+                f.write_str("the time step must be positive and at most MAX_TIME_STEP")
+            }
+            Self::StaleHandle => {
+                f.write_str("the handle refers to an object that no longer exists")
+            }
+            Self::CapacityFull { what } => write!(f, "the {what} store is full"),
+            Self::InvalidOperation { what } => write!(f, "invalid operation: {what}"),
+        }
+    }
+}
+
+impl core::error::Error for Error {}

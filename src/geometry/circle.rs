@@ -1,0 +1,1 @@
+//! Circle geometry (placeholder, being written).

@@ -1,0 +1,221 @@
+//! `Rot`: a rotation stored as a unit complex number (cos θ, sin θ), and
+//! `Transform`: a rotation plus a translation.
+//!
+//! Storing (cos, sin) instead of an angle means the step never evaluates a
+//! trigonometric function: rotating a vector is four multiplies, and advancing
+//! the rotation by ω·h is the complex product (c − s·ω·h, s + c·ω·h) followed by a
+//! renormalisation (one `sqrt`). Angles exist only at the API edge, through the
+//! deterministic fixed-point functions in [`crate::math::trig`].
+
+use super::scalar::{Scalar, ONE, ZERO};
+use super::trig;
+use super::vector2::Vector2;
+
+/// A rotation as a unit complex number: `c = cos θ`, `s = sin θ`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Rot {
+    /// cos θ.
+    pub c: Scalar,
+    /// sin θ.
+    pub s: Scalar,
+}
+
+impl Default for Rot {
+    fn default() -> Self {
+        Self::IDENTITY
+    }
+}
+
+impl Rot {
+    /// No rotation.
+    pub const IDENTITY: Self = Self { c: ONE, s: ZERO };
+
+    /// The rotation by `angle` radians (any magnitude; reduced exactly).
+    #[must_use]
+    pub fn from_angle(angle: Scalar) -> Self {
+        let (s, c) = trig::sin_cos(angle);
+        Self { c, s }
+    }
+
+    /// The angle in radians, in (−π, π].
+    #[must_use]
+    pub fn angle(self) -> Scalar {
+        trig::atan2(self.s, self.c)
+    }
+
+    /// The rotation pointing along `v`, or `None` for the zero vector.
+    #[must_use]
+    pub fn from_direction(v: Vector2) -> Option<Self> {
+        v.try_normalize().map(|n| Self { c: n.x, s: n.y })
+    }
+
+    /// `v` rotated by this rotation.
+    #[inline]
+    #[must_use]
+    pub fn rotate(self, v: Vector2) -> Vector2 {
+        Vector2::new(
+            self.c
+                .saturating_mul(v.x)
+                .saturating_sub(self.s.saturating_mul(v.y)),
+            self.s
+                .saturating_mul(v.x)
+                .saturating_add(self.c.saturating_mul(v.y)),
+        )
+    }
+
+    /// `v` rotated by the inverse of this rotation.
+    #[inline]
+    #[must_use]
+    pub fn inv_rotate(self, v: Vector2) -> Vector2 {
+        Vector2::new(
+            self.c
+                .saturating_mul(v.x)
+                .saturating_add(self.s.saturating_mul(v.y)),
+            self.c
+                .saturating_mul(v.y)
+                .saturating_sub(self.s.saturating_mul(v.x)),
+        )
+    }
+
+    /// The composition `self ∘ other` (rotate by `other`, then by `self`).
+    #[inline]
+    #[must_use]
+    pub fn compose(self, o: Self) -> Self {
+        Self {
+            c: self
+                .c
+                .saturating_mul(o.c)
+                .saturating_sub(self.s.saturating_mul(o.s)),
+            s: self
+                .s
+                .saturating_mul(o.c)
+                .saturating_add(self.c.saturating_mul(o.s)),
+        }
+    }
+
+    /// The inverse rotation.
+    #[inline]
+    #[must_use]
+    pub fn inverse(self) -> Self {
+        Self {
+            c: self.c,
+            s: self.s.saturating_neg(),
+        }
+    }
+
+    /// The relative rotation `self⁻¹ ∘ other`.
+    #[inline]
+    #[must_use]
+    pub fn inv_mul(self, o: Self) -> Self {
+        self.inverse().compose(o)
+    }
+
+    /// The rotation advanced by the small angle `delta` radians (ω·h) and
+    /// renormalised to unit length. `delta` should be small (the world clamps
+    /// angular speed so that |ω·h| stays well below 1); the result is a unit
+    /// rotation whatever it is.
+    #[must_use]
+    pub fn integrate(self, delta: Scalar) -> Self {
+        let c = self.c.saturating_sub(self.s.saturating_mul(delta));
+        let s = self.s.saturating_add(self.c.saturating_mul(delta));
+        Self { c, s }.normalized()
+    }
+
+    /// The same rotation rescaled to unit length; the identity if both parts are 0.
+    #[must_use]
+    pub fn normalized(self) -> Self {
+        match Vector2::new(self.c, self.s).try_normalize() {
+            Some(n) => Self { c: n.x, s: n.y },
+            None => Self::IDENTITY,
+        }
+    }
+
+    /// The rotated x axis (the body's local x direction in world space).
+    #[inline]
+    #[must_use]
+    pub fn x_axis(self) -> Vector2 {
+        Vector2::new(self.c, self.s)
+    }
+}
+
+/// A rigid transform: rotate by `q`, then translate by `p`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Transform {
+    /// Translation (metres).
+    pub p: Vector2,
+    /// Rotation.
+    pub q: Rot,
+}
+
+impl Transform {
+    /// The identity transform.
+    pub const IDENTITY: Self = Self {
+        p: Vector2::ZERO,
+        q: Rot::IDENTITY,
+    };
+
+    /// A transform from a translation and a rotation.
+    #[inline]
+    #[must_use]
+    pub const fn new(p: Vector2, q: Rot) -> Self {
+        Self { p, q }
+    }
+
+    /// A local point mapped to world space: `q·v + p`.
+    #[inline]
+    #[must_use]
+    pub fn apply(self, v: Vector2) -> Vector2 {
+        self.q.rotate(v) + self.p
+    }
+
+    /// A world point mapped to local space: `q⁻¹·(v − p)`.
+    #[inline]
+    #[must_use]
+    pub fn apply_inv(self, v: Vector2) -> Vector2 {
+        self.q.inv_rotate(v - self.p)
+    }
+
+    /// The transform of frame `b` expressed in frame `self`: `self⁻¹ ∘ b`.
+    #[must_use]
+    pub fn inv_mul(self, b: Self) -> Self {
+        Self {
+            p: self.q.inv_rotate(b.p - self.p),
+            q: self.q.inv_mul(b.q),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integrating_keeps_unit_length() {
+        let mut q = Rot::IDENTITY;
+        let step = Scalar::lit("0.05");
+        for _ in 0..10_000 {
+            q = q.integrate(step);
+            let len2 =
+                q.c.saturating_mul(q.c)
+                    .saturating_add(q.s.saturating_mul(q.s));
+            assert!((len2.saturating_sub(ONE)).abs() < Scalar::lit("0.000000005"));
+        }
+    }
+
+    #[test]
+    fn rotate_then_inverse_rotate_is_identity_within_rounding() {
+        let q = Rot::from_direction(Vector2::from_int(3, 4)).unwrap_or_default();
+        let v = Vector2::from_int(7, -2);
+        let back = q.inv_rotate(q.rotate(v));
+        assert!((back - v).length() < Scalar::lit("0.0000001"));
+        let x = q.rotate(Vector2::X) - Vector2::new(Scalar::lit("0.6"), Scalar::lit("0.8"));
+        assert!(x.length() < Scalar::lit("0.000000001"), "{x:?}");
+    }
+
+    #[test]
+    fn transform_round_trip() {
+        let t = Transform::new(Vector2::from_int(10, 5), Rot { c: ZERO, s: ONE });
+        assert_eq!(t.apply(Vector2::X), Vector2::from_int(10, 6));
+        assert_eq!(t.apply_inv(Vector2::from_int(10, 6)), Vector2::X);
+    }
+}

@@ -1,0 +1,144 @@
+//! The one number type of the engine and the few helpers every stage uses.
+//!
+//! `Scalar` is Q32.32 fixed point (`fixed::types::I32F32`): 32 integer bits, 32
+//! fraction bits. Resolution is 2^-32 ≈ 2.3e-10 and range ±2^31 ≈ ±2.1e9. The
+//! range of *squared* quantities is therefore only |x| < 46,340, which is why the
+//! engine squares relative, local quantities and never absolute world positions.
+//!
+//! # Overflow policy
+//! Plain `*`/`+` on a fixed-point number panic on overflow in debug builds and wrap
+//! in release builds, which would break the contract that both builds behave the
+//! same. Engine code therefore never applies a raw operator to a `Scalar`: it spells
+//! out a policy at every operation (`saturating_*` almost everywhere), and the helpers
+//! here cover the two operations that can fail outright: division by zero and the
+//! square root of a negative number.
+
+/// The fixed-point number type used for every physical quantity (Q32.32).
+pub type Scalar = fixed::types::I32F32;
+
+/// 0.
+pub const ZERO: Scalar = Scalar::ZERO;
+/// 1.
+pub const ONE: Scalar = Scalar::ONE;
+/// 0.5.
+pub const HALF: Scalar = Scalar::lit("0.5");
+/// 2.
+pub const TWO: Scalar = Scalar::const_from_int(2);
+/// π, rounded to the nearest Q32.32 value.
+pub const PI: Scalar = Scalar::PI;
+/// 2π, rounded to the nearest Q32.32 value.
+pub const TAU: Scalar = Scalar::TAU;
+/// π/2, rounded to the nearest Q32.32 value.
+pub const FRAC_PI_2: Scalar = Scalar::FRAC_PI_2;
+/// The smallest positive value, 2^-32.
+pub const EPSILON: Scalar = Scalar::DELTA;
+
+/// A `Scalar` from a whole number, usable in `const` items.
+#[inline]
+#[must_use]
+pub const fn from_int(v: i32) -> Scalar {
+    Scalar::const_from_int(v as i64)
+}
+
+/// `a / b`, saturating on overflow and returning 0 when `b` is 0.
+///
+/// Callers that need to tell a zero divisor apart check it themselves; inside the
+/// step a zero divisor means a degenerate configuration whose correct response is
+/// "no impulse", which 0 gives.
+#[inline]
+#[must_use]
+pub fn div(a: Scalar, b: Scalar) -> Scalar {
+    if b == ZERO {
+        ZERO
+    } else {
+        a.saturating_div(b)
+    }
+}
+
+/// Square root, with 0 for zero or negative input. Deterministic: the `fixed`
+/// crate computes it with integer operations only.
+#[inline]
+#[must_use]
+pub fn sqrt(x: Scalar) -> Scalar {
+    if x <= ZERO {
+        ZERO
+    } else {
+        x.sqrt()
+    }
+}
+
+/// `1 / x`, saturating, with 0 for `x == 0` (the convention for inverse masses).
+#[inline]
+#[must_use]
+pub fn recip(x: Scalar) -> Scalar {
+    div(ONE, x)
+}
+
+/// `x` clamped to `[lo, hi]` (expects `lo <= hi`; returns `lo` otherwise).
+#[inline]
+#[must_use]
+pub fn clamp(x: Scalar, lo: Scalar, hi: Scalar) -> Scalar {
+    if x > hi {
+        hi
+    } else if x < lo {
+        lo
+    } else {
+        x
+    }
+}
+
+/// Conversion from `f64` at the API edge: `None` for NaN, infinity or a value
+/// outside the `Scalar` range. Rounds to the nearest representable value, which
+/// IEEE-754 makes identical on every target.
+#[inline]
+#[must_use]
+pub fn checked_from_f64(v: f64) -> Option<Scalar> {
+    Scalar::checked_from_num(v)
+}
+
+/// Conversion from `f32` at the API edge; see [`checked_from_f64`].
+#[inline]
+#[must_use]
+pub fn checked_from_f32(v: f32) -> Option<Scalar> {
+    Scalar::checked_from_num(v)
+}
+
+/// Conversion to `f64` for output (rendering, logging). Never used by the step.
+#[inline]
+#[must_use]
+pub fn to_f64(v: Scalar) -> f64 {
+    v.to_num::<f64>()
+}
+
+/// Conversion to `f32` for output (rendering, logging). Never used by the step.
+#[inline]
+#[must_use]
+pub fn to_f32(v: Scalar) -> f32 {
+    v.to_num::<f32>()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn div_by_zero_is_zero_and_overflow_saturates() {
+        assert_eq!(div(ONE, ZERO), ZERO);
+        assert_eq!(div(Scalar::MAX, EPSILON), Scalar::MAX);
+        assert_eq!(div(from_int(3), from_int(2)), Scalar::lit("1.5"));
+    }
+
+    #[test]
+    fn sqrt_of_negative_is_zero() {
+        assert_eq!(sqrt(from_int(-4)), ZERO);
+        assert_eq!(sqrt(from_int(9)), from_int(3));
+    }
+
+    #[test]
+    fn float_conversion_rejects_non_finite() {
+        assert!(checked_from_f64(f64::NAN).is_none());
+        assert!(checked_from_f64(f64::INFINITY).is_none());
+        assert!(checked_from_f64(1e12).is_none());
+        assert_eq!(checked_from_f64(0.5), Some(HALF));
+    }
+}
