@@ -6,6 +6,7 @@
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
+pub mod collide;
 pub mod error;
 pub mod geometry;
 pub mod math;

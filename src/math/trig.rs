@@ -4,12 +4,8 @@ use super::scalar::{Scalar, ONE, ZERO};
 
 /// `(sin x, cos x)` for any `x` in radians.
 #[must_use]
-pub fn sin_cos(x: Scalar) -> (Scalar, Scalar) {
-    if x == ZERO {
-        (ZERO, ONE)
-    } else {
-        (ZERO, ONE)
-    }
+pub fn sin_cos(_x: Scalar) -> (Scalar, Scalar) {
+    (ZERO, ONE)
 }
 
 /// `atan2(y, x)` in (−π, π].

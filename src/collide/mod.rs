@@ -1,0 +1,1 @@
+//! Narrow phase: contact manifolds for each pair of shapes (being written).
