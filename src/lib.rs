@@ -6,13 +6,28 @@
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
+pub mod arena;
+pub mod body;
 pub mod collide;
 pub mod error;
+pub mod force;
 pub mod geometry;
 pub mod math;
+mod snapshot;
+mod step;
+pub mod world;
 
+pub use arena::{Handle, Slot};
+pub use body::{Body, BodyDef, BodyHandle, BodyType, MassSpec, PathHandle, Shape};
 pub use error::Error;
+pub use force::{
+    ForceGenerator, Generator, GravityForceGenerator, GravityToPointForceGenerator,
+    LinearForceGenerator, Targets,
+};
+pub use geometry::{MassData, PolygonPath};
 pub use math::{Matrix22, Rect, Rot, Scalar, Transform, Vector2};
+pub use world::{Capacities, GeneratorHandle, StepReport, Storage, World, WorldBuffers, WorldDef};
 
-/// The largest time step `World::step` accepts, in seconds.
-pub const MAX_TIME_STEP: Scalar = Scalar::ONE;
+/// The longest time step [`World::step`] accepts: 0.25 s. Longer steps are never
+/// physically meaningful and would let fast bodies move too far in one step.
+pub const MAX_TIME_STEP: Scalar = Scalar::lit("0.25");

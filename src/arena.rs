@@ -1,0 +1,501 @@
+//! Fixed-capacity slot storage with typed, generational handles.
+//!
+//! An [`Arena`] owns a slice of slots whose length is its capacity, chosen when it
+//! is created and never changed: either borrowed from the caller (`&mut [Slot<T>]`,
+//! works without an allocator) or, with the `alloc` feature, an owned `Vec`. This
+//! is smoltcp's "managed" storage pattern. A full arena hands the value back
+//! (`Err(value)`, as `heapless::Vec::push` does), never grows and never panics.
+//!
+//! A [`Handle`] is an index plus a generation. Removing an object bumps its slot's
+//! generation, so an old handle stops resolving (`None` / [`Error::StaleHandle`])
+//! instead of silently naming whatever reuses the slot. The all-zero handle
+//! ([`Handle::NULL`]) never resolves.
+//!
+//! Slot reuse is deterministic and independent of capacity: new objects take the
+//! most recently freed slot first (a LIFO free list), otherwise the lowest slot
+//! never used. Iteration is in slot-index order. Both depend only on the history
+//! of inserts and removals, never on addresses or capacity.
+//!
+//! [`Error::StaleHandle`]: crate::Error::StaleHandle
+
+use core::fmt;
+use core::hash::{Hash, Hasher};
+use core::marker::PhantomData;
+
+use managed::ManagedSlice;
+
+/// Marks the end of the free list.
+const NO_SLOT: u32 = u32::MAX;
+
+/// One slot of an [`Arena`]: an optional value and the slot's generation.
+///
+/// Callers only create empty slots ([`Slot::EMPTY`]) to hand storage to an arena.
+pub struct Slot<T> {
+    generation: u32,
+    next_free: u32,
+    value: Option<T>,
+}
+
+impl<T> Slot<T> {
+    /// An empty slot, for building borrowed arena storage: `[Slot::EMPTY; N]`
+    /// (or `[const { Slot::EMPTY }; N]` for non-`Copy` values).
+    pub const EMPTY: Self = Self {
+        generation: 0,
+        next_free: NO_SLOT,
+        value: None,
+    };
+}
+
+impl<T: Clone> Clone for Slot<T> {
+    fn clone(&self) -> Self {
+        Self {
+            generation: self.generation,
+            next_free: self.next_free,
+            value: self.value.clone(),
+        }
+    }
+}
+
+impl<T: Copy> Copy for Slot<T> {}
+
+impl<T> Default for Slot<T> {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+impl<T: fmt::Debug> fmt::Debug for Slot<T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Slot")
+            .field("generation", &self.generation)
+            .field("value", &self.value)
+            .finish()
+    }
+}
+
+/// A typed handle to an object in an [`Arena`]: slot index plus generation.
+pub struct Handle<T> {
+    index: u32,
+    generation: u32,
+    marker: PhantomData<fn() -> T>,
+}
+
+impl<T> Handle<T> {
+    /// The null handle: resolves to nothing in every arena.
+    pub const NULL: Self = Self {
+        index: 0,
+        generation: 0,
+        marker: PhantomData,
+    };
+
+    /// The slot index (for canonical ordering and encoding).
+    #[inline]
+    #[must_use]
+    pub const fn index(self) -> u32 {
+        self.index
+    }
+
+    /// The generation of the slot when this handle was issued.
+    #[inline]
+    #[must_use]
+    pub const fn generation(self) -> u32 {
+        self.generation
+    }
+
+    /// Rebuilds a handle from its parts (for decoding a snapshot or a network
+    /// message). A made-up handle can only resolve to the object currently in that
+    /// slot with that generation, or to nothing.
+    #[inline]
+    #[must_use]
+    pub const fn from_parts(index: u32, generation: u32) -> Self {
+        Self {
+            index,
+            generation,
+            marker: PhantomData,
+        }
+    }
+
+    /// True for [`Handle::NULL`].
+    #[inline]
+    #[must_use]
+    pub const fn is_null(self) -> bool {
+        self.generation == 0
+    }
+}
+
+impl<T> Clone for Handle<T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<T> Copy for Handle<T> {}
+impl<T> PartialEq for Handle<T> {
+    fn eq(&self, o: &Self) -> bool {
+        self.index == o.index && self.generation == o.generation
+    }
+}
+impl<T> Eq for Handle<T> {}
+impl<T> PartialOrd for Handle<T> {
+    fn partial_cmp(&self, o: &Self) -> Option<core::cmp::Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl<T> Ord for Handle<T> {
+    /// Orders by slot index, then generation: the canonical order of the engine.
+    fn cmp(&self, o: &Self) -> core::cmp::Ordering {
+        (self.index, self.generation).cmp(&(o.index, o.generation))
+    }
+}
+impl<T> Hash for Handle<T> {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        self.index.hash(h);
+        self.generation.hash(h);
+    }
+}
+impl<T> Default for Handle<T> {
+    fn default() -> Self {
+        Self::NULL
+    }
+}
+impl<T> fmt::Debug for Handle<T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "Handle({}v{})", self.index, self.generation)
+    }
+}
+
+/// The slots an [`Arena`] runs on: a managed (borrowed or owned) slice, or an
+/// inline array for small stores that live inside their owner.
+pub trait SlotStorage<T> {
+    /// The slots.
+    fn slots(&self) -> &[Slot<T>];
+    /// The slots, mutably.
+    fn slots_mut(&mut self) -> &mut [Slot<T>];
+}
+
+impl<T> SlotStorage<T> for ManagedSlice<'_, Slot<T>> {
+    fn slots(&self) -> &[Slot<T>] {
+        self
+    }
+    fn slots_mut(&mut self) -> &mut [Slot<T>] {
+        self
+    }
+}
+
+impl<T, const N: usize> SlotStorage<T> for [Slot<T>; N] {
+    fn slots(&self) -> &[Slot<T>] {
+        self
+    }
+    fn slots_mut(&mut self) -> &mut [Slot<T>] {
+        self
+    }
+}
+
+/// Fixed-capacity storage of `T`s addressed by [`Handle<K>`] (`K` defaults to `T`;
+/// a marker type gives values that borrow, like trait objects, plain handles).
+/// `S` is the slot storage, by default a [`ManagedSlice`].
+pub struct Arena<'a, T, K = T, S: SlotStorage<T> = ManagedSlice<'a, Slot<T>>> {
+    slots: S,
+    /// Slots `0..used` have been occupied at least once.
+    used: u32,
+    /// Head of the LIFO list of freed slots.
+    free_head: u32,
+    /// Live objects.
+    len: u32,
+    marker: PhantomData<(fn() -> K, fn() -> T, &'a ())>,
+}
+
+impl<'a, T, K> Arena<'a, T, K> {
+    /// An empty arena on the given storage; its capacity is the storage's length
+    /// (at most `u32::MAX − 1` slots are used). Any content is discarded.
+    pub fn new(storage: impl Into<ManagedSlice<'a, Slot<T>>>) -> Self {
+        Self::on(storage.into())
+    }
+
+    /// An empty arena with `capacity` slots on the heap.
+    #[cfg(feature = "alloc")]
+    #[must_use]
+    pub fn with_capacity(capacity: usize) -> Self {
+        let mut v = alloc::vec::Vec::with_capacity(capacity);
+        v.resize_with(capacity, || Slot::EMPTY);
+        Self::new(v)
+    }
+}
+
+impl<T, K, const N: usize> Arena<'_, T, K, [Slot<T>; N]> {
+    /// An empty arena stored inline (`const`, so it can be part of a `static`).
+    #[must_use]
+    pub const fn inline() -> Self {
+        Self {
+            slots: [const { Slot::EMPTY }; N],
+            used: 0,
+            free_head: NO_SLOT,
+            len: 0,
+            marker: PhantomData,
+        }
+    }
+}
+
+impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
+    /// An empty arena on `slots`; any content is discarded.
+    pub fn on(mut slots: S) -> Self {
+        for s in slots.slots_mut().iter_mut() {
+            *s = Slot::EMPTY;
+        }
+        Self {
+            slots,
+            used: 0,
+            free_head: NO_SLOT,
+            len: 0,
+            marker: PhantomData,
+        }
+    }
+
+    /// Maximum number of objects.
+    #[inline]
+    #[must_use]
+    pub fn capacity(&self) -> usize {
+        self.slots.slots().len().min(NO_SLOT as usize)
+    }
+
+    /// Number of live objects.
+    #[inline]
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.len as usize
+    }
+
+    /// True when there are no live objects.
+    #[inline]
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// True when an insert would fail.
+    #[inline]
+    #[must_use]
+    pub fn is_full(&self) -> bool {
+        self.free_head == NO_SLOT && self.used as usize >= self.capacity()
+    }
+
+    /// Stores `value` and returns its handle, or gives the value back when full.
+    ///
+    /// # Errors
+    /// `Err(value)` when every slot is occupied.
+    pub fn insert(&mut self, value: T) -> Result<Handle<K>, T> {
+        let index = if self.free_head != NO_SLOT {
+            self.free_head
+        } else if (self.used as usize) < self.capacity() {
+            self.used
+        } else {
+            return Err(value);
+        };
+        let Some(slot) = self.slots.slots_mut().get_mut(index as usize) else {
+            return Err(value);
+        };
+        if index == self.free_head {
+            self.free_head = slot.next_free;
+        } else {
+            self.used = self.used.saturating_add(1);
+        }
+        // Generation 0 is reserved for the null handle.
+        if slot.generation == 0 {
+            slot.generation = 1;
+        }
+        slot.next_free = NO_SLOT;
+        slot.value = Some(value);
+        self.len = self.len.saturating_add(1);
+        Ok(Handle {
+            index,
+            generation: slot.generation,
+            marker: PhantomData,
+        })
+    }
+
+    /// Removes and returns the object, or `None` for a stale or null handle.
+    pub fn remove(&mut self, h: Handle<K>) -> Option<T> {
+        let slot = self.slots.slots_mut().get_mut(h.index as usize)?;
+        if slot.generation != h.generation || slot.value.is_none() {
+            return None;
+        }
+        let value = slot.value.take();
+        // Bump the generation so every outstanding handle goes stale; skip 0.
+        slot.generation = match slot.generation.wrapping_add(1) {
+            0 => 1,
+            g => g,
+        };
+        slot.next_free = self.free_head;
+        self.free_head = h.index;
+        self.len = self.len.saturating_sub(1);
+        value
+    }
+
+    /// The object behind `h`, or `None` for a stale or null handle.
+    #[inline]
+    #[must_use]
+    pub fn get(&self, h: Handle<K>) -> Option<&T> {
+        let slot = self.slots.slots().get(h.index as usize)?;
+        if slot.generation == h.generation {
+            slot.value.as_ref()
+        } else {
+            None
+        }
+    }
+
+    /// The object behind `h`, mutably, or `None` for a stale or null handle.
+    #[inline]
+    pub fn get_mut(&mut self, h: Handle<K>) -> Option<&mut T> {
+        let slot = self.slots.slots_mut().get_mut(h.index as usize)?;
+        if slot.generation == h.generation {
+            slot.value.as_mut()
+        } else {
+            None
+        }
+    }
+
+    /// True when `h` names a live object.
+    #[inline]
+    #[must_use]
+    pub fn contains(&self, h: Handle<K>) -> bool {
+        self.get(h).is_some()
+    }
+
+    /// The handle of the live object in slot `index`, if any.
+    #[must_use]
+    pub fn handle_at(&self, index: u32) -> Option<Handle<K>> {
+        let slot = self.slots.slots().get(index as usize)?;
+        slot.value.as_ref().map(|_| Handle {
+            index,
+            generation: slot.generation,
+            marker: PhantomData,
+        })
+    }
+
+    /// The live object in slot `index`, if any (no generation check).
+    #[inline]
+    #[must_use]
+    pub fn get_at(&self, index: u32) -> Option<&T> {
+        self.slots.slots().get(index as usize)?.value.as_ref()
+    }
+
+    /// The live object in slot `index`, mutably, if any (no generation check).
+    #[inline]
+    pub fn get_at_mut(&mut self, index: u32) -> Option<&mut T> {
+        self.slots
+            .slots_mut()
+            .get_mut(index as usize)?
+            .value
+            .as_mut()
+    }
+
+    /// Number of slots ever used: every live object has a slot index below this.
+    #[inline]
+    #[must_use]
+    pub fn slots_used(&self) -> u32 {
+        self.used
+    }
+
+    /// The live objects with their handles, in slot-index order.
+    pub fn iter(&self) -> impl Iterator<Item = (Handle<K>, &T)> + '_ {
+        self.used_slots().iter().enumerate().filter_map(|(i, s)| {
+            let value = s.value.as_ref()?;
+            Some((
+                Handle {
+                    index: i as u32,
+                    generation: s.generation,
+                    marker: PhantomData,
+                },
+                value,
+            ))
+        })
+    }
+
+    /// The live objects with their handles, mutably, in slot-index order.
+    pub fn iter_mut(&mut self) -> impl Iterator<Item = (Handle<K>, &mut T)> + '_ {
+        let used = self.used as usize;
+        self.slots
+            .slots_mut()
+            .iter_mut()
+            .take(used)
+            .enumerate()
+            .filter_map(|(i, s)| {
+                let generation = s.generation;
+                let value = s.value.as_mut()?;
+                Some((
+                    Handle {
+                        index: i as u32,
+                        generation,
+                        marker: PhantomData,
+                    },
+                    value,
+                ))
+            })
+    }
+
+    /// The slots that have ever been used, for the step's index-ordered sweeps.
+    #[inline]
+    pub(crate) fn used_slots(&self) -> &[Slot<T>] {
+        self.slots.slots().get(..self.used as usize).unwrap_or(&[])
+    }
+
+    /// Allocator state for encoding: (slots used, free-list head, live count).
+    pub(crate) fn allocator_state(&self) -> (u32, u32, u32) {
+        (self.used, self.free_head, self.len)
+    }
+
+    /// Generation and free-list link of slot `index`, for encoding.
+    pub(crate) fn slot_meta(&self, index: u32) -> Option<(u32, u32)> {
+        self.slots
+            .slots()
+            .get(index as usize)
+            .map(|s| (s.generation, s.next_free))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn full_arena_hands_the_value_back() {
+        let mut storage = [Slot::EMPTY; 2];
+        let mut a: Arena<'_, u8> = Arena::new(&mut storage[..]);
+        let h1 = a.insert(1).expect("room");
+        let _h2 = a.insert(2).expect("room");
+        assert_eq!(a.insert(3), Err(3));
+        assert_eq!(a.remove(h1), Some(1));
+        assert!(a.insert(4).is_ok());
+        assert_eq!(a.len(), 2);
+    }
+
+    #[test]
+    fn stale_handle_does_not_reach_the_new_occupant() {
+        let mut storage = [Slot::EMPTY; 4];
+        let mut a: Arena<'_, u8> = Arena::new(&mut storage[..]);
+        let old = a.insert(10).expect("room");
+        assert_eq!(a.remove(old), Some(10));
+        let new = a.insert(20).expect("room");
+        assert_eq!(new.index(), old.index(), "the freed slot is reused");
+        assert_eq!(a.get(old), None);
+        assert_eq!(a.remove(old), None);
+        assert_eq!(a.get(new), Some(&20));
+        assert_eq!(a.get(Handle::NULL), None);
+    }
+
+    #[test]
+    fn reuse_order_is_lifo_and_iteration_is_by_index() {
+        let mut storage = [Slot::EMPTY; 8];
+        let mut a: Arena<'_, u8> = Arena::new(&mut storage[..]);
+        let hs: [Handle<u8>; 5] = core::array::from_fn(|i| a.insert(i as u8).expect("room"));
+        a.remove(hs[1]);
+        a.remove(hs[3]);
+        assert_eq!(a.insert(30).map(Handle::index), Ok(3));
+        assert_eq!(a.insert(10).map(Handle::index), Ok(1));
+        assert_eq!(a.insert(50).map(Handle::index), Ok(5));
+        let order: [u8; 6] = {
+            let mut it = a.iter().map(|(_, v)| *v);
+            core::array::from_fn(|_| it.next().unwrap_or(255))
+        };
+        assert_eq!(order, [0, 10, 2, 30, 4, 50]);
+    }
+}

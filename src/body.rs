@@ -1,0 +1,498 @@
+//! Bodies: [`Body`], its [`BodyType`] and [`Shape`], and the [`BodyDef`] builder.
+//!
+//! A body's position is its centre of mass in world space (metres), its rotation a
+//! unit complex number ([`Rot`]). A circle body is centred on its position; a
+//! polygon body refers to a shared [`PolygonPath`] whose vertices are stored about
+//! their centroid, so sharing one path between many bodies costs one handle per
+//! body and no copy of the vertices (the manual's memory-footprint advice).
+//!
+//! [`PolygonPath`]: crate::geometry::PolygonPath
+
+use crate::arena::Handle;
+use crate::geometry::{MassData, PolygonPath};
+use crate::math::scalar::{self, Scalar, ZERO};
+use crate::math::{Rect, Rot, Transform, Vector2};
+
+/// Handle of a body in a [`World`](crate::World).
+pub type BodyHandle = Handle<Body>;
+/// Handle of a shared polygon path in a [`World`](crate::World).
+pub type PathHandle = Handle<PolygonPath>;
+
+/// How a body moves.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[repr(u8)]
+pub enum BodyType {
+    /// Never moves; infinite mass. Floors, walls, terrain. (The manual: mass 0 or
+    /// `set_static`.)
+    Static = 0,
+    /// Moves with its velocity, which only the game sets: pushes dynamic bodies,
+    /// is pushed by nothing, ignores force generators. Moving platforms.
+    Kinematic = 1,
+    /// Moved by forces, contacts and constraints.
+    #[default]
+    Dynamic = 2,
+}
+
+/// The shape of a body.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Shape {
+    /// A circle of this radius (m) centred on the body's position.
+    Circle {
+        /// Radius in metres.
+        radius: Scalar,
+    },
+    /// A convex polygon: a shared path, its vertices about the body's position.
+    Polygon(PathHandle),
+}
+
+impl Shape {
+    /// The manual's body-type order used to canonicalise pairs: circles before
+    /// polygons.
+    #[inline]
+    #[must_use]
+    pub fn kind_rank(&self) -> u8 {
+        match self {
+            Self::Circle { .. } => 0,
+            Self::Polygon(_) => 1,
+        }
+    }
+}
+
+/// How the mass of a new body is chosen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MassSpec {
+    /// Mass = density (kg/m²) × area.
+    Density(Scalar),
+    /// This total mass in kg; 0 makes the body static (as in the manual).
+    Mass(Scalar),
+}
+
+/// Everything needed to create a body; every option has a default.
+///
+/// ```
+/// use arphysics::{BodyDef, Vector2, Scalar};
+/// let ball = BodyDef::circle(Scalar::from_num(5))
+///     .position(Vector2::from_int(50, 50))
+///     .mass(Scalar::from_num(5));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BodyDef {
+    /// Shape. Polygon paths must be added to the world first.
+    pub shape: Shape,
+    /// Static, kinematic or dynamic (default dynamic).
+    pub body_type: BodyType,
+    /// Position of the centre of mass, m (default origin).
+    pub position: Vector2,
+    /// Rotation (default none).
+    pub rotation: Rot,
+    /// Linear velocity, m/s (default 0).
+    pub linear_velocity: Vector2,
+    /// Angular velocity, rad/s, counter-clockwise positive (default 0).
+    pub angular_velocity: Scalar,
+    /// Mass or density (default density 1 kg/m²).
+    pub mass: MassSpec,
+    /// Coulomb friction coefficient, ≥ 0 (default 0.6).
+    pub friction: Scalar,
+    /// Restitution (bounciness) in [0, 1] (default 0).
+    pub restitution: Scalar,
+    /// Collision group bits: two bodies sharing any bit never collide (default 0).
+    pub collision_groups: u32,
+    /// Collision level, selects the collision handler (default 0 = no level).
+    pub collision_level: u32,
+    /// A word for the game, e.g. its entity id (default 0). Never read by the engine.
+    pub user_data: u64,
+}
+
+impl BodyDef {
+    /// A dynamic circle of `radius` metres.
+    #[must_use]
+    pub fn circle(radius: Scalar) -> Self {
+        Self::with_shape(Shape::Circle { radius })
+    }
+
+    /// A dynamic polygon using a path added with
+    /// [`World::add_path`](crate::World::add_path).
+    #[must_use]
+    pub fn polygon(path: PathHandle) -> Self {
+        Self::with_shape(Shape::Polygon(path))
+    }
+
+    fn with_shape(shape: Shape) -> Self {
+        Self {
+            shape,
+            body_type: BodyType::Dynamic,
+            position: Vector2::ZERO,
+            rotation: Rot::IDENTITY,
+            linear_velocity: Vector2::ZERO,
+            angular_velocity: ZERO,
+            mass: MassSpec::Density(scalar::ONE),
+            friction: Scalar::lit("0.6"),
+            restitution: ZERO,
+            collision_groups: 0,
+            collision_level: 0,
+            user_data: 0,
+        }
+    }
+
+    /// Sets the position of the centre of mass (m).
+    #[must_use]
+    pub fn position(mut self, p: Vector2) -> Self {
+        self.position = p;
+        self
+    }
+
+    /// Sets the rotation from an angle in radians.
+    #[must_use]
+    pub fn angle(mut self, radians: Scalar) -> Self {
+        self.rotation = Rot::from_angle(radians);
+        self
+    }
+
+    /// Sets the rotation.
+    #[must_use]
+    pub fn rotation(mut self, q: Rot) -> Self {
+        self.rotation = q;
+        self
+    }
+
+    /// Sets the linear velocity (m/s).
+    #[must_use]
+    pub fn linear_velocity(mut self, v: Vector2) -> Self {
+        self.linear_velocity = v;
+        self
+    }
+
+    /// Sets the angular velocity (rad/s).
+    #[must_use]
+    pub fn angular_velocity(mut self, w: Scalar) -> Self {
+        self.angular_velocity = w;
+        self
+    }
+
+    /// Sets the body type.
+    #[must_use]
+    pub fn body_type(mut self, t: BodyType) -> Self {
+        self.body_type = t;
+        self
+    }
+
+    /// Makes the body static (the manual's `setStatic`).
+    #[must_use]
+    pub fn static_body(self) -> Self {
+        self.body_type(BodyType::Static)
+    }
+
+    /// Makes the body kinematic.
+    #[must_use]
+    pub fn kinematic(self) -> Self {
+        self.body_type(BodyType::Kinematic)
+    }
+
+    /// Sets the total mass in kg. As in the manual, a mass of 0 makes the body static.
+    #[must_use]
+    pub fn mass(mut self, kg: Scalar) -> Self {
+        self.mass = MassSpec::Mass(kg);
+        self
+    }
+
+    /// Sets the density in kg/m² (mass = density × area).
+    #[must_use]
+    pub fn density(mut self, kg_per_m2: Scalar) -> Self {
+        self.mass = MassSpec::Density(kg_per_m2);
+        self
+    }
+
+    /// Sets the friction coefficient (≥ 0).
+    #[must_use]
+    pub fn friction(mut self, mu: Scalar) -> Self {
+        self.friction = mu;
+        self
+    }
+
+    /// Sets the restitution, 0 (no bounce) to 1 (elastic).
+    #[must_use]
+    pub fn restitution(mut self, e: Scalar) -> Self {
+        self.restitution = e;
+        self
+    }
+
+    /// Sets the collision group bits.
+    #[must_use]
+    pub fn collision_groups(mut self, bits: u32) -> Self {
+        self.collision_groups = bits;
+        self
+    }
+
+    /// Sets the collision level.
+    #[must_use]
+    pub fn collision_level(mut self, level: u32) -> Self {
+        self.collision_level = level;
+        self
+    }
+
+    /// Sets the game's user data word.
+    #[must_use]
+    pub fn user_data(mut self, data: u64) -> Self {
+        self.user_data = data;
+        self
+    }
+}
+
+/// A rigid body in a [`World`](crate::World).
+///
+/// Read it with [`World::body`](crate::World::body); change it through the world
+/// (which validates positions against the bounds) or through the velocity and
+/// impulse methods here, which force generators and games use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Body {
+    pub(crate) position: Vector2,
+    pub(crate) rotation: Rot,
+    pub(crate) linear_velocity: Vector2,
+    pub(crate) angular_velocity: Scalar,
+    pub(crate) shape: Shape,
+    pub(crate) body_type: BodyType,
+    pub(crate) mass: MassData,
+    pub(crate) friction: Scalar,
+    pub(crate) restitution: Scalar,
+    pub(crate) collision_groups: u32,
+    pub(crate) collision_level: u32,
+    pub(crate) user_data: u64,
+    /// Left the world bounds: frozen in place until the game moves it back.
+    pub(crate) out_of_bounds: bool,
+    /// Bounding radius about the centre of mass (m), cached from the shape.
+    pub(crate) radius: Scalar,
+    /// World bounding box, refreshed whenever the body moves (derived state).
+    pub(crate) aabb: Rect,
+}
+
+impl Body {
+    /// Position of the centre of mass (m).
+    #[inline]
+    #[must_use]
+    pub fn position(&self) -> Vector2 {
+        self.position
+    }
+
+    /// Rotation.
+    #[inline]
+    #[must_use]
+    pub fn rotation(&self) -> Rot {
+        self.rotation
+    }
+
+    /// Rotation angle in radians, in (−π, π].
+    #[must_use]
+    pub fn angle(&self) -> Scalar {
+        self.rotation.angle()
+    }
+
+    /// The body's transform (local → world).
+    #[inline]
+    #[must_use]
+    pub fn transform(&self) -> Transform {
+        Transform::new(self.position, self.rotation)
+    }
+
+    /// Linear velocity of the centre of mass (m/s).
+    #[inline]
+    #[must_use]
+    pub fn linear_velocity(&self) -> Vector2 {
+        self.linear_velocity
+    }
+
+    /// Angular velocity (rad/s, counter-clockwise positive).
+    #[inline]
+    #[must_use]
+    pub fn angular_velocity(&self) -> Scalar {
+        self.angular_velocity
+    }
+
+    /// Velocity of the world point `p` attached to the body (m/s).
+    #[must_use]
+    pub fn velocity_at(&self, p: Vector2) -> Vector2 {
+        self.linear_velocity + Vector2::cross_sv(self.angular_velocity, p - self.position)
+    }
+
+    /// The shape.
+    #[inline]
+    #[must_use]
+    pub fn shape(&self) -> Shape {
+        self.shape
+    }
+
+    /// Static, kinematic or dynamic.
+    #[inline]
+    #[must_use]
+    pub fn body_type(&self) -> BodyType {
+        self.body_type
+    }
+
+    /// True for static bodies.
+    #[inline]
+    #[must_use]
+    pub fn is_static(&self) -> bool {
+        self.body_type == BodyType::Static
+    }
+
+    /// True for dynamic bodies.
+    #[inline]
+    #[must_use]
+    pub fn is_dynamic(&self) -> bool {
+        self.body_type == BodyType::Dynamic
+    }
+
+    /// Mass in kg (0 for static and kinematic bodies).
+    #[inline]
+    #[must_use]
+    pub fn mass(&self) -> Scalar {
+        self.mass.mass
+    }
+
+    /// 1 / mass (0 for static and kinematic bodies).
+    #[inline]
+    #[must_use]
+    pub fn inv_mass(&self) -> Scalar {
+        self.mass.inv_mass
+    }
+
+    /// Moment of inertia about the centre of mass (kg·m²).
+    #[inline]
+    #[must_use]
+    pub fn inertia(&self) -> Scalar {
+        self.mass.inertia
+    }
+
+    /// 1 / inertia (0 for static and kinematic bodies).
+    #[inline]
+    #[must_use]
+    pub fn inv_inertia(&self) -> Scalar {
+        self.mass.inv_inertia
+    }
+
+    /// All mass properties.
+    #[inline]
+    #[must_use]
+    pub fn mass_data(&self) -> MassData {
+        self.mass
+    }
+
+    /// Friction coefficient.
+    #[inline]
+    #[must_use]
+    pub fn friction(&self) -> Scalar {
+        self.friction
+    }
+
+    /// Restitution.
+    #[inline]
+    #[must_use]
+    pub fn restitution(&self) -> Scalar {
+        self.restitution
+    }
+
+    /// Collision group bits.
+    #[inline]
+    #[must_use]
+    pub fn collision_groups(&self) -> u32 {
+        self.collision_groups
+    }
+
+    /// Collision level.
+    #[inline]
+    #[must_use]
+    pub fn collision_level(&self) -> u32 {
+        self.collision_level
+    }
+
+    /// The game's user data word.
+    #[inline]
+    #[must_use]
+    pub fn user_data(&self) -> u64 {
+        self.user_data
+    }
+
+    /// Sets the game's user data word.
+    #[inline]
+    pub fn set_user_data(&mut self, data: u64) {
+        self.user_data = data;
+    }
+
+    /// True once the body left the world bounds: it is frozen (not moved, not
+    /// collided, not pushed) until [`World::set_position`](crate::World::set_position)
+    /// brings it back or the game removes it.
+    #[inline]
+    #[must_use]
+    pub fn is_out_of_bounds(&self) -> bool {
+        self.out_of_bounds
+    }
+
+    /// World-space bounding box (m).
+    #[inline]
+    #[must_use]
+    pub fn aabb(&self) -> Rect {
+        self.aabb
+    }
+
+    /// Bounding radius about the centre of mass (m).
+    #[inline]
+    #[must_use]
+    pub fn bounding_radius(&self) -> Scalar {
+        self.radius
+    }
+
+    /// True when the step moves this body (dynamic or kinematic, inside the bounds).
+    #[inline]
+    pub(crate) fn is_awake_mover(&self) -> bool {
+        self.body_type != BodyType::Static && !self.out_of_bounds
+    }
+
+    /// Sets the linear velocity (m/s). Ignored for static and frozen bodies; the
+    /// step clamps it to the world's speed limit.
+    pub fn set_linear_velocity(&mut self, v: Vector2) {
+        if self.is_awake_mover() {
+            self.linear_velocity = v;
+        }
+    }
+
+    /// Sets the angular velocity (rad/s). Ignored for static and frozen bodies.
+    pub fn set_angular_velocity(&mut self, w: Scalar) {
+        if self.is_awake_mover() {
+            self.angular_velocity = w;
+        }
+    }
+
+    /// Applies an impulse (N·s) at the centre of mass: Δv = J / m. Dynamic bodies only.
+    pub fn apply_linear_impulse(&mut self, impulse: Vector2) {
+        if self.is_dynamic() && !self.out_of_bounds {
+            self.linear_velocity += impulse * self.mass.inv_mass;
+        }
+    }
+
+    /// Applies an angular impulse (N·m·s): Δω = L / I. Dynamic bodies only.
+    pub fn apply_angular_impulse(&mut self, impulse: Scalar) {
+        if self.is_dynamic() && !self.out_of_bounds {
+            self.angular_velocity = self
+                .angular_velocity
+                .saturating_add(impulse.saturating_mul(self.mass.inv_inertia));
+        }
+    }
+
+    /// Applies an impulse (N·s) at the world point `p`, changing both velocities.
+    pub fn apply_impulse_at(&mut self, impulse: Vector2, p: Vector2) {
+        self.apply_linear_impulse(impulse);
+        self.apply_angular_impulse((p - self.position).cross(impulse));
+    }
+
+    /// Applies a force (N) at the centre of mass for `dt` seconds: an impulse F·dt.
+    pub fn apply_force(&mut self, force: Vector2, dt: Scalar) {
+        self.apply_linear_impulse(force * dt);
+    }
+
+    /// Changes the linear velocity by `dv` (m/s) whatever the mass: how gravity
+    /// acts. Dynamic bodies only.
+    pub fn add_linear_velocity(&mut self, dv: Vector2) {
+        if self.is_dynamic() && !self.out_of_bounds {
+            self.linear_velocity += dv;
+        }
+    }
+}

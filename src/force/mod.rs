@@ -1,0 +1,140 @@
+//! Force generators: add velocity to all or a set of bodies every step.
+//!
+//! A generator is asked [`ForceGenerator::applies_to`] for each dynamic body inside
+//! the bounds (in body-slot order), and [`ForceGenerator::apply`] is called for those
+//! it accepts, before collisions are resolved. Generators run in the order they
+//! were added (slot order). Static and kinematic bodies never reach a generator.
+//!
+//! The built-ins are plain data (so they can be snapshotted); a game's own
+//! generators implement the trait and are stored as trait objects, borrowed
+//! (`&'a mut`) or, with `alloc`, boxed.
+
+mod gravity;
+mod gravity_to_point;
+mod linear;
+
+pub use gravity::GravityForceGenerator;
+pub use gravity_to_point::GravityToPointForceGenerator;
+pub use linear::LinearForceGenerator;
+
+use managed::Managed;
+
+use crate::body::{Body, BodyHandle};
+use crate::math::Scalar;
+
+/// Most bodies a built-in generator's explicit target list can hold.
+pub const MAX_TARGETS: usize = 32;
+
+/// A force generator: the manual's `shouldApplyToBody` / `applyToBody`.
+pub trait ForceGenerator {
+    /// Whether to apply to this body this step (default: every body). An area
+    /// effect checks the body's position here.
+    fn applies_to(&self, handle: BodyHandle, body: &Body) -> bool {
+        let _ = (handle, body);
+        true
+    }
+
+    /// Changes the body's velocity for a step of `dt` seconds, typically with
+    /// [`Body::apply_force`], [`Body::apply_linear_impulse`] or
+    /// [`Body::add_linear_velocity`].
+    fn apply(&mut self, handle: BodyHandle, body: &mut Body, dt: Scalar);
+}
+
+/// Which bodies a built-in generator acts on.
+// The explicit list is inline (no allocation), which makes that variant the large one.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum Targets {
+    /// Every dynamic body.
+    #[default]
+    All,
+    /// Dynamic bodies with this collision level.
+    Level(u32),
+    /// Exactly these bodies (stale handles are ignored).
+    Bodies(heapless::Vec<BodyHandle, MAX_TARGETS>),
+}
+
+impl Targets {
+    /// Targets exactly the given bodies.
+    ///
+    /// # Errors
+    /// [`crate::Error::CapacityFull`] for more than [`MAX_TARGETS`] handles.
+    pub fn bodies(handles: &[BodyHandle]) -> Result<Self, crate::Error> {
+        heapless::Vec::from_slice(handles)
+            .map(Self::Bodies)
+            .map_err(|_| crate::Error::CapacityFull {
+                what: "generator target",
+            })
+    }
+
+    /// True when the body is targeted.
+    #[must_use]
+    pub fn contains(&self, handle: BodyHandle, body: &Body) -> bool {
+        match self {
+            Self::All => true,
+            Self::Level(l) => body.collision_level() == *l,
+            Self::Bodies(v) => v.contains(&handle),
+        }
+    }
+}
+
+/// A force generator stored in a world: one of the built-ins, or a game's own.
+pub enum Generator<'a> {
+    /// A constant force.
+    Linear(LinearForceGenerator),
+    /// Uniform gravity.
+    Gravity(GravityForceGenerator),
+    /// Attraction to a point.
+    GravityToPoint(GravityToPointForceGenerator),
+    /// A game's own generator.
+    Custom(Managed<'a, dyn ForceGenerator + 'a>),
+}
+
+impl<'a> Generator<'a> {
+    /// A game's generator, borrowed for the world's lifetime.
+    pub fn borrowed(g: &'a mut (dyn ForceGenerator + 'a)) -> Self {
+        Self::Custom(Managed::Borrowed(g))
+    }
+
+    /// A game's generator, owned by the world.
+    #[cfg(feature = "alloc")]
+    pub fn boxed(g: alloc::boxed::Box<dyn ForceGenerator + 'a>) -> Self {
+        Self::Custom(Managed::Owned(g))
+    }
+
+    /// The generator as a trait object.
+    pub fn as_dyn_mut(&mut self) -> &mut (dyn ForceGenerator + 'a) {
+        match self {
+            Self::Linear(g) => g,
+            Self::Gravity(g) => g,
+            Self::GravityToPoint(g) => g,
+            Self::Custom(g) => &mut **g,
+        }
+    }
+
+    /// Runs the generator over every candidate body for one step.
+    pub(crate) fn run(&mut self, bodies: &mut crate::arena::Arena<'_, Body>, dt: Scalar) {
+        let g = self.as_dyn_mut();
+        for (h, b) in bodies.iter_mut() {
+            if b.is_dynamic() && !b.out_of_bounds && g.applies_to(h, b) {
+                g.apply(h, b, dt);
+            }
+        }
+    }
+}
+
+impl From<LinearForceGenerator> for Generator<'_> {
+    fn from(g: LinearForceGenerator) -> Self {
+        Self::Linear(g)
+    }
+}
+impl From<GravityForceGenerator> for Generator<'_> {
+    fn from(g: GravityForceGenerator) -> Self {
+        Self::Gravity(g)
+    }
+}
+impl From<GravityToPointForceGenerator> for Generator<'_> {
+    fn from(g: GravityToPointForceGenerator) -> Self {
+        Self::GravityToPoint(g)
+    }
+}

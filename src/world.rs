@@ -1,0 +1,578 @@
+//! [`World`]: the space in which the simulation happens.
+//!
+//! A world owns every body, polygon path and force generator in fixed-capacity
+//! storage chosen when it is created ([`Storage`]): borrowed buffers
+//! ([`WorldBuffers`], no allocator needed, can live in a `static`), or with the
+//! `alloc` feature heap buffers sized at run time ([`Capacities`]). The engine is
+//! the same code on both. Nothing ever grows: a full store is an
+//! [`Error::CapacityFull`], and a call that returns an error has changed nothing.
+
+use managed::ManagedSlice;
+
+use crate::arena::{Arena, Handle, Slot};
+use crate::body::{Body, BodyDef, BodyHandle, BodyType, MassSpec, PathHandle, Shape};
+use crate::error::Error;
+use crate::force::Generator;
+use crate::geometry::circle::{circle_area, circle_unit_inertia};
+use crate::geometry::{MassData, PolygonPath};
+use crate::math::scalar::{self, Scalar, ZERO};
+use crate::math::{Rect, Rot, Vector2};
+use crate::snapshot::{self, Sink, StateHasher};
+
+/// Largest |coordinate| of the world bounds, in metres (2^20 ≈ 1,048 km).
+///
+/// Keeping positions within ±2^20 leaves 2^11 of headroom in Q32.32 for a body to
+/// move past the bounds in one step before it is frozen, so positions never overflow.
+pub const MAX_COORDINATE: Scalar = Scalar::const_from_int(1 << 20);
+
+/// Largest bounding radius of a body about its centre of mass, in metres.
+///
+/// Contact and inertia arithmetic squares lengths up to about twice this; 512 m
+/// keeps those squares (≤ 1.05e6) far inside Q32.32's ±2.1e9.
+pub const MAX_BODY_RADIUS: Scalar = Scalar::const_from_int(512);
+
+/// Highest speed limit a world may be configured with, in m/s.
+///
+/// With the longest time step ([`MAX_TIME_STEP`](crate::MAX_TIME_STEP)) a body
+/// moves at most 512 m per step, and squared speeds (≤ 8.4e6) stay exact.
+pub const MAX_LINEAR_SPEED_LIMIT: Scalar = Scalar::const_from_int(2048);
+
+/// Highest angular speed limit a world may be configured with, in rad/s.
+pub const MAX_ANGULAR_SPEED_LIMIT: Scalar = Scalar::const_from_int(1024);
+
+/// Largest friction coefficient accepted.
+pub const MAX_FRICTION: Scalar = Scalar::const_from_int(100);
+
+/// World configuration; every option has a default.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WorldDef {
+    /// The region bodies live in. A body whose centre leaves it is frozen and
+    /// reported (see [`Body::is_out_of_bounds`]).
+    pub bounds: Rect,
+    /// Speed limit for every body, m/s (default 400, at most
+    /// [`MAX_LINEAR_SPEED_LIMIT`]). Applied after forces and after the solver.
+    pub max_linear_speed: Scalar,
+    /// Angular speed limit, rad/s (default 200, at most
+    /// [`MAX_ANGULAR_SPEED_LIMIT`]). The step also limits rotation to π/4 per step.
+    pub max_angular_speed: Scalar,
+}
+
+impl WorldDef {
+    /// The manual's world: bounds from (0, 0) to (`width`, `height`) metres.
+    #[must_use]
+    pub fn new(width: Scalar, height: Scalar) -> Self {
+        Self::with_bounds(Rect {
+            min: Vector2::ZERO,
+            max: Vector2::new(width, height),
+        })
+    }
+
+    /// A world with arbitrary bounds (e.g. centred on the origin).
+    #[must_use]
+    pub fn with_bounds(bounds: Rect) -> Self {
+        Self {
+            bounds,
+            max_linear_speed: Scalar::const_from_int(400),
+            max_angular_speed: Scalar::const_from_int(200),
+        }
+    }
+
+    fn validate(&self) -> Result<(), Error> {
+        let b = self.bounds;
+        let inside = |v: Scalar| v.saturating_abs() <= MAX_COORDINATE;
+        if !(inside(b.min.x) && inside(b.min.y) && inside(b.max.x) && inside(b.max.y)) {
+            return Err(Error::OutOfRange {
+                what: "world bounds",
+            });
+        }
+        if b.min.x >= b.max.x || b.min.y >= b.max.y {
+            return Err(Error::OutOfRange { what: "world size" });
+        }
+        if self.max_linear_speed <= ZERO || self.max_linear_speed > MAX_LINEAR_SPEED_LIMIT {
+            return Err(Error::OutOfRange {
+                what: "max_linear_speed",
+            });
+        }
+        if self.max_angular_speed <= ZERO || self.max_angular_speed > MAX_ANGULAR_SPEED_LIMIT {
+            return Err(Error::OutOfRange {
+                what: "max_angular_speed",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Marker type naming force generators in handles.
+#[derive(Debug)]
+pub enum GeneratorMarker {}
+
+/// Handle of a force generator in a [`World`].
+pub type GeneratorHandle = Handle<GeneratorMarker>;
+
+/// Force generators a world can hold. Hooks (generators, handlers, callbacks) are
+/// few and may borrow the game's objects, so they live inline in the [`World`]
+/// with fixed capacities; the bulk data (bodies, paths, arbiters) is in
+/// [`Storage`] sized by the caller.
+pub const MAX_FORCE_GENERATORS: usize = 16;
+
+/// How many objects of each kind a world can hold (with the `alloc` feature).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Capacities {
+    /// Bodies.
+    pub bodies: usize,
+    /// Shared polygon paths.
+    pub paths: usize,
+}
+
+impl Default for Capacities {
+    fn default() -> Self {
+        Self::for_bodies(1024)
+    }
+}
+
+impl Capacities {
+    /// Room for `bodies` bodies, each with its own polygon path.
+    #[must_use]
+    pub fn for_bodies(bodies: usize) -> Self {
+        Self {
+            bodies,
+            paths: bodies,
+        }
+    }
+}
+
+/// The storage a world runs on: one slice per store, each borrowed or owned.
+pub struct Storage<'a> {
+    /// Body slots.
+    pub bodies: ManagedSlice<'a, Slot<Body>>,
+    /// Polygon path slots.
+    pub paths: ManagedSlice<'a, Slot<PolygonPath>>,
+}
+
+impl Storage<'_> {
+    /// Heap storage with the given capacities.
+    #[cfg(feature = "alloc")]
+    #[must_use]
+    pub fn with_capacities(c: Capacities) -> Self {
+        fn buf<T>(n: usize) -> alloc::vec::Vec<Slot<T>> {
+            let mut v = alloc::vec::Vec::with_capacity(n);
+            v.resize_with(n, || Slot::EMPTY);
+            v
+        }
+        Self {
+            bodies: ManagedSlice::Owned(buf(c.bodies)),
+            paths: ManagedSlice::Owned(buf(c.paths)),
+        }
+    }
+}
+
+/// Statically sized buffers for a world that needs no allocator: `BODIES` bodies
+/// and as many polygon paths. `new` is `const`, so the buffers can be a `static`
+/// (e.g. in a `static_cell::StaticCell`) or a local.
+pub struct WorldBuffers<const BODIES: usize> {
+    bodies: [Slot<Body>; BODIES],
+    paths: [Slot<PolygonPath>; BODIES],
+}
+
+impl<const BODIES: usize> WorldBuffers<BODIES> {
+    /// Empty buffers.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self {
+            bodies: [Slot::EMPTY; BODIES],
+            paths: [Slot::EMPTY; BODIES],
+        }
+    }
+
+    /// The buffers as a world's storage.
+    pub fn storage(&mut self) -> Storage<'_> {
+        Storage {
+            bodies: ManagedSlice::Borrowed(&mut self.bodies[..]),
+            paths: ManagedSlice::Borrowed(&mut self.paths[..]),
+        }
+    }
+}
+
+impl<const BODIES: usize> Default for WorldBuffers<BODIES> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// What happened during a step.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StepReport {
+    /// Bodies that left the bounds this step (now frozen; see
+    /// [`World::out_of_bounds_bodies`]).
+    pub left_bounds: u32,
+}
+
+/// The simulation: bodies, shared polygon paths, force generators, and `step`.
+pub struct World<'a> {
+    pub(crate) def: WorldDef,
+    pub(crate) bodies: Arena<'a, Body>,
+    pub(crate) paths: Arena<'a, PolygonPath>,
+    pub(crate) generators:
+        Arena<'a, Generator<'a>, GeneratorMarker, [Slot<Generator<'a>>; MAX_FORCE_GENERATORS]>,
+    pub(crate) step_count: u64,
+}
+
+impl<'a> World<'a> {
+    /// A world on the given storage.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for bounds that are empty or exceed
+    /// ±[`MAX_COORDINATE`], or speed limits outside their ranges.
+    pub fn new(def: WorldDef, storage: Storage<'a>) -> Result<Self, Error> {
+        def.validate()?;
+        Ok(Self {
+            def,
+            bodies: Arena::new(storage.bodies),
+            paths: Arena::new(storage.paths),
+            generators: Arena::inline(),
+            step_count: 0,
+        })
+    }
+
+    /// A world on heap storage with the given capacities.
+    ///
+    /// # Errors
+    /// As [`World::new`].
+    #[cfg(feature = "alloc")]
+    pub fn with_capacities(def: WorldDef, capacities: Capacities) -> Result<Self, Error> {
+        Self::new(def, Storage::with_capacities(capacities))
+    }
+
+    /// The configuration.
+    #[must_use]
+    pub fn def(&self) -> &WorldDef {
+        &self.def
+    }
+
+    /// The world bounds.
+    #[must_use]
+    pub fn bounds(&self) -> Rect {
+        self.def.bounds
+    }
+
+    /// Steps taken so far.
+    #[must_use]
+    pub fn step_count(&self) -> u64 {
+        self.step_count
+    }
+
+    // ---- polygon paths -------------------------------------------------------
+
+    /// Stores a polygon path for bodies to share.
+    ///
+    /// # Errors
+    /// [`Error::CapacityFull`] when the path store is full.
+    pub fn add_path(&mut self, path: PolygonPath) -> Result<PathHandle, Error> {
+        self.paths
+            .insert(path)
+            .map_err(|_| Error::CapacityFull { what: "path" })
+    }
+
+    /// The path behind `h`.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn path(&self, h: PathHandle) -> Result<&PolygonPath, Error> {
+        self.paths.get(h).ok_or(Error::StaleHandle)
+    }
+
+    /// Removes a path no body uses any more.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`], or [`Error::InvalidOperation`] while a body uses it.
+    pub fn remove_path(&mut self, h: PathHandle) -> Result<PolygonPath, Error> {
+        if !self.paths.contains(h) {
+            return Err(Error::StaleHandle);
+        }
+        if self
+            .bodies
+            .iter()
+            .any(|(_, b)| b.shape == Shape::Polygon(h))
+        {
+            return Err(Error::InvalidOperation {
+                what: "remove a path that bodies use",
+            });
+        }
+        self.paths.remove(h).ok_or(Error::StaleHandle)
+    }
+
+    // ---- bodies --------------------------------------------------------------
+
+    /// Creates a body.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for a radius, mass, density, friction, restitution,
+    /// speed or rotation outside its range; [`Error::StaleHandle`] for an unknown
+    /// polygon path; [`Error::OutsideBounds`] when the position is outside the
+    /// world; [`Error::CapacityFull`] when the body store is full.
+    pub fn add_body(&mut self, def: BodyDef) -> Result<BodyHandle, Error> {
+        let body = self.build_body(&def)?;
+        self.bodies
+            .insert(body)
+            .map_err(|_| Error::CapacityFull { what: "body" })
+    }
+
+    fn build_body(&self, def: &BodyDef) -> Result<Body, Error> {
+        let (area, unit_inertia, radius) = match def.shape {
+            Shape::Circle { radius } => {
+                if radius <= ZERO || radius > MAX_BODY_RADIUS {
+                    return Err(Error::OutOfRange { what: "radius" });
+                }
+                (circle_area(radius)?, circle_unit_inertia(radius)?, radius)
+            }
+            Shape::Polygon(h) => {
+                let p = self.paths.get(h).ok_or(Error::StaleHandle)?;
+                if p.radius() > MAX_BODY_RADIUS {
+                    return Err(Error::OutOfRange {
+                        what: "polygon size",
+                    });
+                }
+                (p.area(), p.unit_inertia(), p.radius())
+            }
+        };
+        let mut body_type = def.body_type;
+        let mass = match (body_type, def.mass) {
+            (BodyType::Dynamic, MassSpec::Mass(m)) if m == ZERO => {
+                body_type = BodyType::Static;
+                MassData::STATIC
+            }
+            (BodyType::Dynamic, MassSpec::Mass(m)) => MassData::from_mass(m, area, unit_inertia)?,
+            (BodyType::Dynamic, MassSpec::Density(d)) => {
+                MassData::from_density(d, area, unit_inertia)?
+            }
+            _ => MassData::STATIC,
+        };
+        if def.friction < ZERO || def.friction > MAX_FRICTION {
+            return Err(Error::OutOfRange { what: "friction" });
+        }
+        if def.restitution < ZERO || def.restitution > scalar::ONE {
+            return Err(Error::OutOfRange {
+                what: "restitution",
+            });
+        }
+        let rotation = normalized_rotation(def.rotation)?;
+        if !self.def.bounds.contains(def.position) {
+            return Err(Error::OutsideBounds);
+        }
+        let moving = body_type != BodyType::Static;
+        let v = if moving {
+            def.linear_velocity
+        } else {
+            Vector2::ZERO
+        };
+        let w = if moving { def.angular_velocity } else { ZERO };
+        if v.x.saturating_abs() > self.def.max_linear_speed
+            || v.y.saturating_abs() > self.def.max_linear_speed
+            || v.length() > self.def.max_linear_speed
+        {
+            return Err(Error::OutOfRange {
+                what: "linear velocity",
+            });
+        }
+        if w.saturating_abs() > self.def.max_angular_speed {
+            return Err(Error::OutOfRange {
+                what: "angular velocity",
+            });
+        }
+        let mut body = Body {
+            position: def.position,
+            rotation,
+            linear_velocity: v,
+            angular_velocity: w,
+            shape: def.shape,
+            body_type,
+            mass,
+            friction: def.friction,
+            restitution: def.restitution,
+            collision_groups: def.collision_groups,
+            collision_level: def.collision_level,
+            user_data: def.user_data,
+            out_of_bounds: false,
+            radius,
+            aabb: Rect::default(),
+        };
+        body.aabb = compute_aabb(&body, &self.paths);
+        Ok(body)
+    }
+
+    /// Removes a body and returns it.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn remove_body(&mut self, h: BodyHandle) -> Result<Body, Error> {
+        self.bodies.remove(h).ok_or(Error::StaleHandle)
+    }
+
+    /// The body behind `h`.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`] (a removed body's handle never names another body).
+    pub fn body(&self, h: BodyHandle) -> Result<&Body, Error> {
+        self.bodies.get(h).ok_or(Error::StaleHandle)
+    }
+
+    /// The body behind `h`, to change its velocity or apply impulses.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn body_mut(&mut self, h: BodyHandle) -> Result<&mut Body, Error> {
+        self.bodies.get_mut(h).ok_or(Error::StaleHandle)
+    }
+
+    /// Every body with its handle, in slot order (the engine's canonical order).
+    pub fn bodies(&self) -> impl Iterator<Item = (BodyHandle, &Body)> + '_ {
+        self.bodies.iter()
+    }
+
+    /// Number of bodies.
+    #[must_use]
+    pub fn body_count(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// Bodies frozen after leaving the bounds.
+    pub fn out_of_bounds_bodies(&self) -> impl Iterator<Item = BodyHandle> + '_ {
+        self.bodies
+            .iter()
+            .filter(|(_, b)| b.out_of_bounds)
+            .map(|(h, _)| h)
+    }
+
+    /// Moves a body (teleport). Brings a frozen body back into play.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`], or [`Error::OutsideBounds`] for a point outside the world.
+    pub fn set_position(&mut self, h: BodyHandle, p: Vector2) -> Result<(), Error> {
+        if !self.def.bounds.contains(p) {
+            return Err(Error::OutsideBounds);
+        }
+        let b = self.bodies.get_mut(h).ok_or(Error::StaleHandle)?;
+        b.position = p;
+        b.out_of_bounds = false;
+        b.aabb = compute_aabb(b, &self.paths);
+        Ok(())
+    }
+
+    /// Sets a body's rotation.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`], or [`Error::OutOfRange`] for a zero rotation.
+    pub fn set_rotation(&mut self, h: BodyHandle, q: Rot) -> Result<(), Error> {
+        let q = normalized_rotation(q)?;
+        let b = self.bodies.get_mut(h).ok_or(Error::StaleHandle)?;
+        b.rotation = q;
+        b.aabb = compute_aabb(b, &self.paths);
+        Ok(())
+    }
+
+    /// Sets a body's rotation from an angle in radians.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn set_angle(&mut self, h: BodyHandle, radians: Scalar) -> Result<(), Error> {
+        self.set_rotation(h, Rot::from_angle(radians))
+    }
+
+    /// Makes a body static (the manual's `setStatic`): it stops and never moves again.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn set_static(&mut self, h: BodyHandle) -> Result<(), Error> {
+        let b = self.bodies.get_mut(h).ok_or(Error::StaleHandle)?;
+        b.body_type = BodyType::Static;
+        b.mass = MassData::STATIC;
+        b.linear_velocity = Vector2::ZERO;
+        b.angular_velocity = ZERO;
+        Ok(())
+    }
+
+    // ---- force generators ----------------------------------------------------
+
+    /// Adds a force generator; generators run in the order they were added.
+    ///
+    /// # Errors
+    /// [`Error::CapacityFull`] when the generator store is full.
+    pub fn add_force_generator(
+        &mut self,
+        g: impl Into<Generator<'a>>,
+    ) -> Result<GeneratorHandle, Error> {
+        self.generators
+            .insert(g.into())
+            .map_err(|_| Error::CapacityFull {
+                what: "force generator",
+            })
+    }
+
+    /// Removes a force generator and returns it.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn remove_force_generator(&mut self, h: GeneratorHandle) -> Result<Generator<'a>, Error> {
+        self.generators.remove(h).ok_or(Error::StaleHandle)
+    }
+
+    /// The force generator behind `h`, to change its parameters.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn force_generator_mut(&mut self, h: GeneratorHandle) -> Result<&mut Generator<'a>, Error> {
+        self.generators.get_mut(h).ok_or(Error::StaleHandle)
+    }
+
+    // ---- state ---------------------------------------------------------------
+
+    /// A 64-bit hash of the canonical little-endian encoding of the state
+    /// (step count, bounds and limits, every body with the body allocator's state).
+    /// Equal on every target and build for equal states.
+    #[must_use]
+    pub fn state_hash(&self) -> u64 {
+        let mut h = StateHasher::new();
+        self.encode(&mut h);
+        h.finish()
+    }
+
+    pub(crate) fn encode(&self, s: &mut impl Sink) {
+        s.put(b"ARPH");
+        s.u32(1);
+        s.u64(self.step_count);
+        s.rect(self.def.bounds);
+        s.scalar(self.def.max_linear_speed);
+        s.scalar(self.def.max_angular_speed);
+        snapshot::encode_arena(s, &self.bodies, |s, b| snapshot::encode_body(s, b));
+    }
+}
+
+/// The unit rotation in the direction of `q`, or an error for (0, 0).
+fn normalized_rotation(q: Rot) -> Result<Rot, Error> {
+    Rot::from_direction(Vector2::new(q.c, q.s)).ok_or(Error::OutOfRange { what: "rotation" })
+}
+
+/// The world bounding box of a body at its current transform.
+pub(crate) fn compute_aabb(b: &Body, paths: &Arena<'_, PolygonPath>) -> Rect {
+    match b.shape {
+        Shape::Circle { radius } => Rect::from_center(b.position, Vector2::new(radius, radius)),
+        Shape::Polygon(h) => match paths.get(h) {
+            Some(p) => {
+                let xf = b.transform();
+                let mut it = p.vertices().iter().map(|v| xf.apply(*v));
+                let first = it.next().unwrap_or(b.position);
+                it.fold(
+                    Rect {
+                        min: first,
+                        max: first,
+                    },
+                    |r, v| Rect {
+                        min: r.min.min(v),
+                        max: r.max.max(v),
+                    },
+                )
+            }
+            None => Rect::from_center(b.position, Vector2::new(b.radius, b.radius)),
+        },
+    }
+}
