@@ -201,8 +201,11 @@ pub struct Arena<'a, T, K = T, S: SlotStorage<T> = ManagedSlice<'a, Slot<T>>> {
     free_head: u32,
     /// Live objects.
     len: u32,
-    marker: PhantomData<(fn() -> K, fn() -> T, &'a ())>,
+    marker: Markers<'a, T, K>,
 }
+
+/// Variance markers: handles typed by `K`, values of type `T`, storage borrowed for `'a`.
+type Markers<'a, T, K> = PhantomData<(fn() -> K, fn() -> T, &'a ())>;
 
 impl<'a, T, K> Arena<'a, T, K> {
     /// An empty arena on the given storage; its capacity is the storage's length
