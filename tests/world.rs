@@ -355,6 +355,7 @@ fn full_stores_are_errors() {
             .err(),
         Some(Error::CapacityFull { what: "body" })
     );
+    assert_eq!(world.state_hash(), before, "a failed add changes nothing");
     for _ in 0..arphysics::world::MAX_FORCE_GENERATORS {
         world
             .add_force_generator(GravityForceGenerator::new(v(0.0, -1.0)))
