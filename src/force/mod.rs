@@ -6,8 +6,9 @@
 //! were added (slot order). Static and kinematic bodies never reach a generator.
 //!
 //! The built-ins are plain data (so they can be snapshotted); a game's own
-//! generators implement the trait and are stored as trait objects, borrowed
-//! (`&'a mut`) or, with `alloc`, boxed.
+//! generators implement the trait and are stored as `Send` trait objects (so a
+//! world can move between threads or sit in a `static`), borrowed (`&'a mut`) or,
+//! with `alloc`, boxed.
 
 mod gravity;
 mod gravity_to_point;
@@ -87,23 +88,23 @@ pub enum Generator<'a> {
     /// Attraction to a point.
     GravityToPoint(GravityToPointForceGenerator),
     /// A game's own generator.
-    Custom(Managed<'a, dyn ForceGenerator + 'a>),
+    Custom(Managed<'a, dyn ForceGenerator + Send + 'a>),
 }
 
 impl<'a> Generator<'a> {
     /// A game's generator, borrowed for the world's lifetime.
-    pub fn borrowed(g: &'a mut (dyn ForceGenerator + 'a)) -> Self {
+    pub fn borrowed(g: &'a mut (dyn ForceGenerator + Send + 'a)) -> Self {
         Self::Custom(Managed::Borrowed(g))
     }
 
     /// A game's generator, owned by the world.
     #[cfg(feature = "alloc")]
-    pub fn boxed(g: alloc::boxed::Box<dyn ForceGenerator + 'a>) -> Self {
+    pub fn boxed(g: alloc::boxed::Box<dyn ForceGenerator + Send + 'a>) -> Self {
         Self::Custom(Managed::Owned(g))
     }
 
     /// The generator as a trait object.
-    pub fn as_dyn_mut(&mut self) -> &mut (dyn ForceGenerator + 'a) {
+    pub fn as_dyn_mut(&mut self) -> &mut (dyn ForceGenerator + Send + 'a) {
         match self {
             Self::Linear(g) => g,
             Self::Gravity(g) => g,

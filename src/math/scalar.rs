@@ -103,6 +103,24 @@ pub fn checked_from_f32(v: f32) -> Option<Scalar> {
     Scalar::checked_from_num(v)
 }
 
+/// Conversion from `f64` at the API edge with an error naming the parameter:
+/// [`Error::NotFinite`](crate::Error::NotFinite) for NaN, infinity or a value
+/// outside the `Scalar` range.
+///
+/// # Errors
+/// As described.
+pub fn try_from_f64(v: f64, what: &'static str) -> Result<Scalar, crate::Error> {
+    checked_from_f64(v).ok_or(crate::Error::NotFinite { what })
+}
+
+/// Conversion from `f32` at the API edge; see [`try_from_f64`].
+///
+/// # Errors
+/// [`Error::NotFinite`](crate::Error::NotFinite).
+pub fn try_from_f32(v: f32, what: &'static str) -> Result<Scalar, crate::Error> {
+    checked_from_f32(v).ok_or(crate::Error::NotFinite { what })
+}
+
 /// Conversion to `f64` for output (rendering, logging). Never used by the step.
 #[inline]
 #[must_use]

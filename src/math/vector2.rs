@@ -73,6 +73,29 @@ impl Vector2 {
         })
     }
 
+    /// Conversion from floats at the API edge with an error naming the parameter.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`](crate::Error::NotFinite) when a component is NaN,
+    /// infinite or outside the `Scalar` range.
+    pub fn try_from_f64(x: f64, y: f64, what: &'static str) -> Result<Self, crate::Error> {
+        Ok(Self {
+            x: scalar::try_from_f64(x, what)?,
+            y: scalar::try_from_f64(y, what)?,
+        })
+    }
+
+    /// Conversion from `f32` floats at the API edge; see [`Self::try_from_f64`].
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`](crate::Error::NotFinite).
+    pub fn try_from_f32(x: f32, y: f32, what: &'static str) -> Result<Self, crate::Error> {
+        Ok(Self {
+            x: scalar::try_from_f32(x, what)?,
+            y: scalar::try_from_f32(y, what)?,
+        })
+    }
+
     /// Conversion to floats for output (rendering, logging).
     #[must_use]
     pub fn to_f64(self) -> (f64, f64) {
