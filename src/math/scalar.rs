@@ -24,11 +24,12 @@ pub const ONE: Scalar = Scalar::ONE;
 pub const HALF: Scalar = Scalar::lit("0.5");
 /// 2.
 pub const TWO: Scalar = Scalar::const_from_int(2);
-/// π, rounded to the nearest Q32.32 value.
+/// π, rounded toward zero to Q32.32 (0.52 ulp below π; the `fixed` crate's
+/// constant). `atan2` never returns more than this.
 pub const PI: Scalar = Scalar::PI;
-/// 2π, rounded to the nearest Q32.32 value.
+/// 2π, as the nearest Q32.32 value.
 pub const TAU: Scalar = Scalar::TAU;
-/// π/2, rounded to the nearest Q32.32 value.
+/// π/2, as the nearest Q32.32 value.
 pub const FRAC_PI_2: Scalar = Scalar::FRAC_PI_2;
 /// The smallest positive value, 2^-32.
 pub const EPSILON: Scalar = Scalar::DELTA;
