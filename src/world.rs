@@ -25,11 +25,11 @@ use crate::snapshot::{self, Sink, StateHasher};
 /// move past the bounds in one step before it is frozen, so positions never overflow.
 pub const MAX_COORDINATE: Scalar = Scalar::const_from_int(1 << 20);
 
-/// Largest bounding radius of a body about its centre of mass, in metres.
-///
-/// Contact and inertia arithmetic squares lengths up to about twice this; 512 m
-/// keeps those squares (≤ 1.05e6) far inside Q32.32's ±2.1e9.
-pub const MAX_BODY_RADIUS: Scalar = Scalar::const_from_int(512);
+/// Largest bounding radius of a body about its centre of mass, in metres: the
+/// geometry limits ([`MAX_CIRCLE_RADIUS`](crate::geometry::circle::MAX_CIRCLE_RADIUS),
+/// [`MAX_POLYGON_RADIUS`](crate::geometry::polygon_path::MAX_POLYGON_RADIUS)), set so
+/// that the unit moment of inertia (∝ r⁴) stays 5× inside Q32.32's range.
+pub const MAX_BODY_RADIUS: Scalar = crate::geometry::circle::MAX_CIRCLE_RADIUS;
 
 /// Highest speed limit a world may be configured with, in m/s.
 ///
@@ -37,8 +37,10 @@ pub const MAX_BODY_RADIUS: Scalar = Scalar::const_from_int(512);
 /// moves at most 512 m per step, and squared speeds (≤ 8.4e6) stay exact.
 pub const MAX_LINEAR_SPEED_LIMIT: Scalar = Scalar::const_from_int(2048);
 
-/// Highest angular speed limit a world may be configured with, in rad/s.
-pub const MAX_ANGULAR_SPEED_LIMIT: Scalar = Scalar::const_from_int(1024);
+/// Highest angular speed limit a world may be configured with, in rad/s. With
+/// inertia ≤ [`MAX_INERTIA`](crate::geometry::mass::MAX_INERTIA) (1e6 kg·m²) the
+/// angular momentum stays ≤ 2.6e8, 8× inside Q32.32's range.
+pub const MAX_ANGULAR_SPEED_LIMIT: Scalar = Scalar::const_from_int(256);
 
 /// Largest friction coefficient accepted.
 pub const MAX_FRICTION: Scalar = Scalar::const_from_int(100);

@@ -1,6 +1,41 @@
-//! Mass properties (TEMPORARY stand-in; replaced by the geometry branch).
+//! Mass properties of a body, validated so that the quantities the step multiplies
+//! them with stay well inside the Q32.32 range.
+//!
+//! # Ranges, and why
+//! The step multiplies masses by velocities (momentum, impulses) and inertias by
+//! angular velocities. Q32.32 holds magnitudes up to 2^31 ≈ 2.1e9.
+//!
+//! * Mass in [[`MIN_MASS`], [`MAX_MASS`]] = [0.001, 100,000] kg. At the speed
+//!   limit of 2,000 m/s a body's momentum is at most 2e8 kg·m/s, ten times below
+//!   the Q32.32 limit, and an impulse stopping two bodies that close at 4,000 m/s
+//!   is at most 4e8 N·s. (A limit of 1e6 kg would put the momentum itself at 2e9,
+//!   with no headroom at all.) At 1 g the mass still has 4.3 million steps of
+//!   2^-32 (relative rounding 1.2e-7), and `inv_mass` is at most 1,000.
+//! * Moment of inertia in [[`MIN_INERTIA`], [`MAX_INERTIA`]] = [1e-6, 1e6] kg·m².
+//!   For angular speeds up to 200 rad/s (about 32 turns per second, comparable to
+//!   the per-sub-step rotation caps of other engines) the angular momentum is at
+//!   most 2e8 kg·m²/s, the same headroom as the linear momentum. **The world must
+//!   clamp |ω| to 200 rad/s for this to hold.** At 1e-6 kg·m² the inertia still
+//!   has 4,295 steps of 2^-32 (relative rounding 1.2e-4), and `inv_inertia` is at
+//!   most 1e6. For scale: a 1,000 kg, 4 m × 2 m box has 1,667 kg·m²; a 100 t,
+//!   7.7 m square is at the upper limit; a 1 g, 11 cm square at the lower one.
+//!
+//! Static bodies (and kinematic ones) use [`MassData::STATIC`], all zeros: an
+//! inverse mass of 0 is what makes them immovable in the solver.
+
 use crate::error::Error;
 use crate::math::scalar::{self, Scalar, ZERO};
+
+/// Smallest mass of a dynamic body: 0.001 kg (see the [module docs](self)).
+pub const MIN_MASS: Scalar = Scalar::lit("0.001");
+/// Largest mass of a dynamic body: 100,000 kg (see the [module docs](self)).
+pub const MAX_MASS: Scalar = Scalar::const_from_int(100_000);
+/// Smallest moment of inertia of a dynamic body: 1e-6 kg·m² (see the
+/// [module docs](self)).
+pub const MIN_INERTIA: Scalar = Scalar::lit("0.000001");
+/// Largest moment of inertia of a dynamic body: 1e6 kg·m² (see the
+/// [module docs](self)).
+pub const MAX_INERTIA: Scalar = Scalar::const_from_int(1_000_000);
 
 /// Mass properties of a body.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -16,24 +51,83 @@ pub struct MassData {
 }
 
 impl MassData {
-    /// Infinite mass.
+    /// The mass data of a static (or kinematic) body: everything 0, so impulses
+    /// do not move it.
     pub const STATIC: Self = Self {
         mass: ZERO,
         inv_mass: ZERO,
         inertia: ZERO,
         inv_inertia: ZERO,
     };
-    /// From density.
+
+    /// Mass data of a shape of `area` (m²) and `unit_inertia` (kg·m² at density
+    /// 1 kg/m², e.g. [`PolygonPath::unit_inertia`](super::PolygonPath::unit_inertia)
+    /// or [`circle_unit_inertia`](super::circle_unit_inertia)) made of a material
+    /// of `density` kg/m².
+    ///
+    /// `mass = density · area` and `inertia = density · unit_inertia`, each computed
+    /// exactly and rounded once to nearest.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] with `what`:
+    /// * `"density"` when `density ≤ 0`;
+    /// * `"area"` when `area ≤ 0`;
+    /// * `"inertia"` when `unit_inertia ≤ 0`, or the inertia is outside
+    ///   [[`MIN_INERTIA`], [`MAX_INERTIA`]];
+    /// * `"mass"` when the mass is outside [[`MIN_MASS`], [`MAX_MASS`]].
     pub fn from_density(
         density: Scalar,
         area: Scalar,
         unit_inertia: Scalar,
     ) -> Result<Self, Error> {
         if density <= ZERO {
-            return Err(Error::OutOfRange { what: "density" });
+            return Err(out_of_range("density"));
         }
-        let mass = density.saturating_mul(area);
-        let inertia = density.saturating_mul(unit_inertia);
+        check_shape(area, unit_inertia)?;
+        let mass = mul_div_round(density, area, scalar::ONE)
+            .filter(|m| (MIN_MASS..=MAX_MASS).contains(m))
+            .ok_or(out_of_range("mass"))?;
+        let inertia =
+            mul_div_round(density, unit_inertia, scalar::ONE).ok_or(out_of_range("inertia"))?;
+        Self::checked(mass, inertia)
+    }
+
+    /// Mass data of a shape of `area` (m²) and `unit_inertia` (kg·m² at density
+    /// 1 kg/m²) with a total `mass` in kg (the density being `mass / area`).
+    ///
+    /// `inertia = mass · unit_inertia / area`, computed exactly and rounded once to
+    /// nearest (no intermediate density is rounded).
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] with `what`:
+    /// * `"mass"` when `mass` is outside [[`MIN_MASS`], [`MAX_MASS`]];
+    /// * `"area"` when `area ≤ 0`;
+    /// * `"inertia"` when `unit_inertia ≤ 0`, or the inertia is outside
+    ///   [[`MIN_INERTIA`], [`MAX_INERTIA`]].
+    pub fn from_mass(mass: Scalar, area: Scalar, unit_inertia: Scalar) -> Result<Self, Error> {
+        if !(MIN_MASS..=MAX_MASS).contains(&mass) {
+            return Err(out_of_range("mass"));
+        }
+        check_shape(area, unit_inertia)?;
+        let inertia = mul_div_round(mass, unit_inertia, area).ok_or(out_of_range("inertia"))?;
+        Self::checked(mass, inertia)
+    }
+
+    /// True for the all-zero mass data of static and kinematic bodies.
+    #[inline]
+    #[must_use]
+    pub fn is_static(&self) -> bool {
+        self.inv_mass == ZERO && self.inv_inertia == ZERO
+    }
+
+    /// Mass data from a mass and an inertia, both checked against their ranges.
+    fn checked(mass: Scalar, inertia: Scalar) -> Result<Self, Error> {
+        if !(MIN_MASS..=MAX_MASS).contains(&mass) {
+            return Err(out_of_range("mass"));
+        }
+        if !(MIN_INERTIA..=MAX_INERTIA).contains(&inertia) {
+            return Err(out_of_range("inertia"));
+        }
         Ok(Self {
             mass,
             inv_mass: scalar::recip(mass),
@@ -41,11 +135,36 @@ impl MassData {
             inv_inertia: scalar::recip(inertia),
         })
     }
-    /// From mass.
-    pub fn from_mass(mass: Scalar, area: Scalar, unit_inertia: Scalar) -> Result<Self, Error> {
-        if mass <= ZERO {
-            return Err(Error::OutOfRange { what: "mass" });
-        }
-        Self::from_density(scalar::div(mass, area), area, unit_inertia)
+}
+
+/// [`Error::OutOfRange`] for `what`.
+const fn out_of_range(what: &'static str) -> Error {
+    Error::OutOfRange { what }
+}
+
+/// The shape's own numbers must be positive.
+fn check_shape(area: Scalar, unit_inertia: Scalar) -> Result<(), Error> {
+    if area <= ZERO {
+        return Err(out_of_range("area"));
     }
+    if unit_inertia <= ZERO {
+        return Err(out_of_range("inertia"));
+    }
+    Ok(())
+}
+
+/// `a · b / c` for positive `a`, `b`, `c`, exact in `i128` (the raw product is
+/// below 2^126) and rounded once to nearest; `None` when the result does not fit.
+fn mul_div_round(a: Scalar, b: Scalar, c: Scalar) -> Option<Scalar> {
+    let num = i128::from(a.to_bits()).checked_mul(i128::from(b.to_bits()))?;
+    let den = i128::from(c.to_bits());
+    if num < 0 || den <= 0 {
+        return None;
+    }
+    // (2·num + den) / (2·den), the raw units of num / den being 2^-32.
+    let q = num
+        .checked_mul(2)?
+        .checked_add(den)?
+        .checked_div(den.checked_mul(2)?)?;
+    i64::try_from(q).ok().map(Scalar::from_bits)
 }

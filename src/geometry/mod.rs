@@ -1,9 +1,100 @@
 //! Shapes and their mass properties: [`PolygonPath`] (convex hull, area, centroid,
-//! moment of inertia), circles, and [`MassData`].
+//! moment of inertia), circles ([`circle_area`], [`circle_unit_inertia`]), and
+//! [`MassData`].
+//!
+//! Every quantity here is computed from the raw Q32.32 bits with exact integer
+//! arithmetic and rounded once, to nearest, at the end. The results are therefore
+//! a function of the input values alone, on every target, and correctly rounded
+//! (to within a fraction of the last bit) rather than carrying the round-off of a
+//! chain of fixed-point operations.
 
 pub mod circle;
 pub mod mass;
 pub mod polygon_path;
 
-pub use mass::MassData;
-pub use polygon_path::{PolygonPath, MAX_POLYGON_VERTICES};
+pub use circle::{circle_area, circle_unit_inertia, MAX_CIRCLE_RADIUS};
+pub use mass::{MassData, MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};
+pub use polygon_path::{
+    PolygonPath, MAX_POLYGON_RADIUS, MAX_POLYGON_VERTICES, MIN_POLYGON_AREA, MIN_POLYGON_THICKNESS,
+};
+
+/// Exact unsigned 256-bit arithmetic, just enough for second moments of area.
+///
+/// A polygon's moment of inertia is a sum of products of two 80-bit integers (a
+/// cross product and a sum of squares of raw coordinate bits), which does not fit
+/// an `i128`. Rather than dropping low bits (and making the rounding depend on the
+/// scale), the products are formed exactly here and rounded once.
+mod wide {
+    /// The low 64 bits of a `u128`.
+    const LOW64: u128 = u64::MAX as u128;
+
+    /// An unsigned 256-bit integer `hi · 2^128 + lo`.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
+    pub(super) struct U256 {
+        hi: u128,
+        lo: u128,
+    }
+
+    impl U256 {
+        /// The exact product `a · b`.
+        pub(super) fn mul(a: u128, b: u128) -> Self {
+            let (a1, a0) = (a >> 64, a & LOW64);
+            let (b1, b0) = (b >> 64, b & LOW64);
+            // Each partial product multiplies two values below 2^64, so it is below
+            // 2^128: the `wrapping_*` never wraps here, it only states the policy.
+            let p00 = a0.wrapping_mul(b0);
+            let p01 = a0.wrapping_mul(b1);
+            let p10 = a1.wrapping_mul(b0);
+            let p11 = a1.wrapping_mul(b1);
+            // The middle column sums three values below 2^64: below 2^66.
+            let mid = (p00 >> 64)
+                .wrapping_add(p01 & LOW64)
+                .wrapping_add(p10 & LOW64);
+            let lo = (p00 & LOW64) | ((mid & LOW64) << 64);
+            // The full product is below 2^256, so the high half cannot wrap.
+            let hi = p11
+                .wrapping_add(p01 >> 64)
+                .wrapping_add(p10 >> 64)
+                .wrapping_add(mid >> 64);
+            Self { hi, lo }
+        }
+
+        /// `self + o` (modulo 2^256; callers keep sums far below that).
+        pub(super) fn add(self, o: Self) -> Self {
+            let (lo, carry) = self.lo.overflowing_add(o.lo);
+            let hi = self.hi.wrapping_add(o.hi).wrapping_add(u128::from(carry));
+            Self { hi, lo }
+        }
+
+        /// `self − o`, or 0 when `o > self`.
+        pub(super) fn saturating_sub(self, o: Self) -> Self {
+            if o >= self {
+                return Self::default();
+            }
+            let (lo, borrow) = self.lo.overflowing_sub(o.lo);
+            let hi = self.hi.wrapping_sub(o.hi).wrapping_sub(u128::from(borrow));
+            Self { hi, lo }
+        }
+
+        /// `self / (d · 2^shift)` rounded to nearest (ties up), for `1 ≤ shift ≤ 125`
+        /// and `1 ≤ d ≤ 3`. `None` when the arguments are outside those limits or
+        /// the quotient does not fit a `u128`.
+        pub(super) fn div_round(self, shift: u32, d: u128) -> Option<u128> {
+            if !(1..=125).contains(&shift) || !(1..=3).contains(&d) {
+                return None;
+            }
+            if self.hi >> shift != 0 {
+                return None;
+            }
+            // self = s · 2^shift + r, with r < 2^shift.
+            let s = (self.hi << 128u32.saturating_sub(shift)) | (self.lo >> shift);
+            let r = self.lo & ((1u128 << shift).wrapping_sub(1));
+            let (q, rd) = (s.checked_div(d)?, s.checked_rem(d)?);
+            // self / (d·2^shift) = q + rem / den, with rem < den ≤ 3 · 2^125.
+            let rem = (rd << shift) | r;
+            let den = d << shift;
+            let up = rem >= den.wrapping_sub(rem);
+            q.checked_add(u128::from(up))
+        }
+    }
+}
