@@ -77,7 +77,7 @@ fn non_positive_radius_mass_or_density_is_rejected() {
             .map(drop)
     });
     rejects(radius, |w, _| {
-        w.add_body(BodyDef::circle(s(513.0)).position(v(5.0, 5.0)))
+        w.add_body(BodyDef::circle(s(129.0)).position(v(5.0, 5.0)))
             .map(drop)
     });
     let mass = Error::OutOfRange { what: "mass" };
