@@ -133,43 +133,19 @@ pub(crate) fn half(x: Scalar) -> Scalar {
 }
 
 /// The unit vector along `v` and the length of `v` (m), or `None` for the zero
-/// vector.
-///
-/// `Vector2::normalize` divides by `sqrt(x² + y²)`, and in Q32.32 the square of a
-/// short vector keeps few significant bits: below about 1 cm the result is no
-/// longer unit to 1e-6, and below about 1e-5 m the square rounds to 0. Contact
-/// normals are often taken from such short vectors (two nearly coincident circle
-/// centres, a circle centre just outside a corner), so this scales `v` by an exact
-/// power of two until its larger component lies in [2^13, 2^14) m, where the
-/// square keeps full precision and cannot saturate (2·2^28 < 2^31), normalises
-/// that, and scales the length back. The normal is then unit to about 1e-9 for
-/// every non-zero input, and the length is within two units of 2^-32 m below
-/// 8192 m (3e-14 relative above).
+/// vector. Contact normals often come from very short vectors (nearly coincident
+/// circle centres, a circle centre just outside a corner); `Vector2` rescales by an
+/// exact power of two before squaring, so the normal is unit to about 1e-9 for
+/// every non-zero input.
 pub(crate) fn direction_and_length(v: Vector2) -> Option<(Vector2, Scalar)> {
-    /// Bit position (of the raw Q32.32 integer) of 2^13.
-    const TARGET_BIT: u32 = 45;
-    let (xb, yb) = (v.x.to_bits(), v.y.to_bits());
-    let top = xb.unsigned_abs().max(yb.unsigned_abs()).checked_ilog2()?;
-    // |bits| < 2^(top+1): shifting left by 45 − top keeps it below 2^46 (no
-    // overflow); shifting right drops at most 63 − 45 = 18 bits, 2^-45 relative.
-    let scale = |bits: i64| -> Scalar {
-        Scalar::from_bits(if top < TARGET_BIT {
-            bits << (TARGET_BIT - top)
-        } else {
-            bits >> (top - TARGET_BIT)
-        })
-    };
-    let (n, scaled_length) = Vector2::new(scale(xb), scale(yb)).normalize_and_length();
-    if scaled_length == ZERO {
-        return None;
-    }
-    let length_bits = scaled_length.to_bits();
-    let length = Scalar::from_bits(if top < TARGET_BIT {
-        length_bits >> (TARGET_BIT - top)
+    // `Vector2` rescales by a power of two before squaring, so this is accurate
+    // for any non-zero vector.
+    let (n, len) = v.normalize_and_length();
+    if n.is_zero() {
+        None
     } else {
-        length_bits.saturating_mul(1_i64 << (top - TARGET_BIT))
-    });
-    Some((n, length))
+        Some((n, len))
+    }
 }
 
 #[cfg(test)]

@@ -19,10 +19,6 @@ pub struct Vector2 {
     pub y: Scalar,
 }
 
-/// Largest component magnitude for which `length_squared` cannot saturate:
-/// 2 · 32,767² < 2^31.
-const SQUARE_SAFE: Scalar = Scalar::const_from_int(32_767);
-
 impl Vector2 {
     /// The zero vector.
     pub const ZERO: Self = Self { x: ZERO, y: ZERO };
@@ -176,36 +172,63 @@ impl Vector2 {
         self.dot(self)
     }
 
-    /// Length, exact (to rounding) over the whole range: large vectors are scaled
-    /// down before squaring so nothing saturates.
-    #[must_use]
-    pub fn length(self) -> Scalar {
-        let (ax, ay) = (self.x.saturating_abs(), self.y.saturating_abs());
-        let m = if ax > ay { ax } else { ay };
-        if m <= SQUARE_SAFE {
-            return scalar::sqrt(self.length_squared());
-        }
-        // Divide by a power of two (exact) so the larger component lands below 2^15.
-        let shift = (m.to_bits().ilog2()).saturating_sub(46);
-        let scaled = Self::new(
-            Scalar::from_bits(self.x.to_bits() >> shift),
-            Scalar::from_bits(self.y.to_bits() >> shift),
-        );
-        let l = scalar::sqrt(scaled.length_squared());
-        Scalar::from_bits(l.to_bits().saturating_mul(1i64 << shift))
+    /// The vector scaled by a power of two so its larger component is in
+    /// [2^13, 2^14), and the exponent: `(scaled, shift)` with
+    /// `self = scaled · 2^shift`. Squares of the scaled components are exact to
+    /// 2^-32 relative to the length, whatever the original magnitude.
+    fn rescaled(self) -> Option<(Self, i32)> {
+        /// Raw-bit position of 2^13 in Q32.32.
+        const TARGET_BIT: u32 = 45;
+        let (xb, yb) = (self.x.to_bits(), self.y.to_bits());
+        let top = xb.unsigned_abs().max(yb.unsigned_abs()).checked_ilog2()?;
+        // |bits| < 2^(top+1): shifting left by 45 − top keeps |bits| < 2^46 (no
+        // overflow); shifting right drops at most 18 low bits (2^-45 relative).
+        Some(if top < TARGET_BIT {
+            let k = TARGET_BIT - top;
+            (
+                Self::new(Scalar::from_bits(xb << k), Scalar::from_bits(yb << k)),
+                -(k as i32),
+            )
+        } else {
+            let k = top - TARGET_BIT;
+            (
+                Self::new(Scalar::from_bits(xb >> k), Scalar::from_bits(yb >> k)),
+                k as i32,
+            )
+        })
     }
 
-    /// The unit vector in the same direction and the original length. The zero
-    /// vector (and any vector too short to have a direction) gives
+    /// `x · 2^shift` for the shifts `rescaled` produces, saturating.
+    fn unscale(x: Scalar, shift: i32) -> Scalar {
+        let b = x.to_bits();
+        Scalar::from_bits(if shift < 0 {
+            b >> shift.unsigned_abs().min(63)
+        } else {
+            b.saturating_mul(1_i64 << shift.unsigned_abs().min(62))
+        })
+    }
+
+    /// Length, accurate to rounding at every magnitude: the vector is scaled by a
+    /// power of two before squaring, so nothing saturates or underflows.
+    #[must_use]
+    pub fn length(self) -> Scalar {
+        match self.rescaled() {
+            Some((v, shift)) => Self::unscale(scalar::sqrt(v.length_squared()), shift),
+            None => ZERO,
+        }
+    }
+
+    /// The unit vector in the same direction and the original length, accurate
+    /// at every magnitude (unit to about 1e-9). The zero vector gives
     /// `(Vector2::ZERO, 0)`: no division by zero is possible.
     #[must_use]
     pub fn normalize_and_length(self) -> (Self, Scalar) {
-        let len = self.length();
-        if len == ZERO {
+        let Some((v, shift)) = self.rescaled() else {
             return (Self::ZERO, ZERO);
-        }
-        let n = Self::new(scalar::div(self.x, len), scalar::div(self.y, len));
-        (n, len)
+        };
+        let len = scalar::sqrt(v.length_squared());
+        let n = Self::new(scalar::div(v.x, len), scalar::div(v.y, len));
+        (n, Self::unscale(len, shift))
     }
 
     /// The unit vector in the same direction, or `Vector2::ZERO` for the zero vector.
@@ -319,7 +342,7 @@ impl SubAssign for Vector2 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::scalar::from_int;
+    use crate::math::scalar::{from_int, EPSILON as EPS, ONE};
 
     #[test]
     fn crosses_follow_the_right_hand_rule() {
@@ -344,6 +367,20 @@ mod tests {
     fn normalizing_zero_gives_zero_not_a_division() {
         assert_eq!(Vector2::ZERO.normalize(), Vector2::ZERO);
         assert!(Vector2::ZERO.try_normalize().is_none());
+        // A vector one ulp long still has a direction.
+        assert_eq!(Vector2::new(ZERO, EPS).normalize(), Vector2::Y);
+        // Millimetre vectors normalise to unit length within 1e-9.
+        let (n, l) =
+            Vector2::new(Scalar::lit("0.0003"), Scalar::lit("0.0004")).normalize_and_length();
+        assert!(
+            (n.length() - ONE).abs() < Scalar::lit("0.000000001"),
+            "{n:?}"
+        );
+        // The inputs themselves are rounded to 2^-32 ≈ 2.3e-10.
+        assert!(
+            (l - Scalar::lit("0.0005")).abs() < Scalar::lit("0.000000001"),
+            "{l}"
+        );
         let (n, l) = Vector2::from_int(0, -7).normalize_and_length();
         assert_eq!((n, l), (Vector2::from_int(0, -1), from_int(7)));
     }
