@@ -39,20 +39,12 @@ pub struct Slot<T> {
 impl<T> Slot<T> {
     /// An empty slot, for building borrowed arena storage: `[Slot::EMPTY; N]`
     /// (or `[const { Slot::EMPTY }; N]` for non-`Copy` values).
-    pub const EMPTY: Self = Self {
-        generation: 0,
-        next_free: NO_SLOT,
-        value: None,
-    };
+    pub const EMPTY: Self = Self { generation: 0, next_free: NO_SLOT, value: None };
 }
 
 impl<T: Clone> Clone for Slot<T> {
     fn clone(&self) -> Self {
-        Self {
-            generation: self.generation,
-            next_free: self.next_free,
-            value: self.value.clone(),
-        }
+        Self { generation: self.generation, next_free: self.next_free, value: self.value.clone() }
     }
 }
 
@@ -66,10 +58,7 @@ impl<T> Default for Slot<T> {
 
 impl<T: fmt::Debug> fmt::Debug for Slot<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("Slot")
-            .field("generation", &self.generation)
-            .field("value", &self.value)
-            .finish()
+        f.debug_struct("Slot").field("generation", &self.generation).field("value", &self.value).finish()
     }
 }
 
@@ -82,11 +71,7 @@ pub struct Handle<T> {
 
 impl<T> Handle<T> {
     /// The null handle: resolves to nothing in every arena.
-    pub const NULL: Self = Self {
-        index: 0,
-        generation: 0,
-        marker: PhantomData,
-    };
+    pub const NULL: Self = Self { index: 0, generation: 0, marker: PhantomData };
 
     /// The slot index (for canonical ordering and encoding).
     #[inline]
@@ -108,11 +93,7 @@ impl<T> Handle<T> {
     #[inline]
     #[must_use]
     pub const fn from_parts(index: u32, generation: u32) -> Self {
-        Self {
-            index,
-            generation,
-            marker: PhantomData,
-        }
+        Self { index, generation, marker: PhantomData }
     }
 
     /// True for [`Handle::NULL`].
@@ -228,13 +209,7 @@ impl<T, K, const N: usize> Arena<'_, T, K, [Slot<T>; N]> {
     /// An empty arena stored inline (`const`, so it can be part of a `static`).
     #[must_use]
     pub const fn inline() -> Self {
-        Self {
-            slots: [const { Slot::EMPTY }; N],
-            used: 0,
-            free_head: NO_SLOT,
-            len: 0,
-            marker: PhantomData,
-        }
+        Self { slots: [const { Slot::EMPTY }; N], used: 0, free_head: NO_SLOT, len: 0, marker: PhantomData }
     }
 }
 
@@ -244,13 +219,7 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
         for s in slots.slots_mut().iter_mut() {
             *s = Slot::EMPTY;
         }
-        Self {
-            slots,
-            used: 0,
-            free_head: NO_SLOT,
-            len: 0,
-            marker: PhantomData,
-        }
+        Self { slots, used: 0, free_head: NO_SLOT, len: 0, marker: PhantomData }
     }
 
     /// Maximum number of objects.
@@ -308,11 +277,7 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
         slot.next_free = NO_SLOT;
         slot.value = Some(value);
         self.len = self.len.saturating_add(1);
-        Ok(Handle {
-            index,
-            generation: slot.generation,
-            marker: PhantomData,
-        })
+        Ok(Handle { index, generation: slot.generation, marker: PhantomData })
     }
 
     /// Removes and returns the object, or `None` for a stale or null handle.
@@ -367,11 +332,7 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
     #[must_use]
     pub fn handle_at(&self, index: u32) -> Option<Handle<K>> {
         let slot = self.slots.slots().get(index as usize)?;
-        slot.value.as_ref().map(|_| Handle {
-            index,
-            generation: slot.generation,
-            marker: PhantomData,
-        })
+        slot.value.as_ref().map(|_| Handle { index, generation: slot.generation, marker: PhantomData })
     }
 
     /// The live object in slot `index`, if any (no generation check).
@@ -384,11 +345,23 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
     /// The live object in slot `index`, mutably, if any (no generation check).
     #[inline]
     pub fn get_at_mut(&mut self, index: u32) -> Option<&mut T> {
-        self.slots
-            .slots_mut()
-            .get_mut(index as usize)?
-            .value
-            .as_mut()
+        self.slots.slots_mut().get_mut(index as usize)?.value.as_mut()
+    }
+
+    /// The live objects in two different slots, both mutably (for a pair of
+    /// bodies in the solver). `None` if `i == j` or either slot is empty.
+    pub(crate) fn get2_at_mut(&mut self, i: u32, j: u32) -> Option<(&mut T, &mut T)> {
+        let (i, j) = (i as usize, j as usize);
+        let slots = self.slots.slots_mut();
+        if i < j {
+            let (lo, hi) = slots.split_at_mut(j);
+            Some((lo.get_mut(i)?.value.as_mut()?, hi.first_mut()?.value.as_mut()?))
+        } else if j < i {
+            let (lo, hi) = slots.split_at_mut(i);
+            Some((hi.first_mut()?.value.as_mut()?, lo.get_mut(j)?.value.as_mut()?))
+        } else {
+            None
+        }
     }
 
     /// Number of slots ever used: every live object has a slot index below this.
@@ -402,37 +375,18 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
     pub fn iter(&self) -> impl Iterator<Item = (Handle<K>, &T)> + '_ {
         self.used_slots().iter().enumerate().filter_map(|(i, s)| {
             let value = s.value.as_ref()?;
-            Some((
-                Handle {
-                    index: i as u32,
-                    generation: s.generation,
-                    marker: PhantomData,
-                },
-                value,
-            ))
+            Some((Handle { index: i as u32, generation: s.generation, marker: PhantomData }, value))
         })
     }
 
     /// The live objects with their handles, mutably, in slot-index order.
     pub fn iter_mut(&mut self) -> impl Iterator<Item = (Handle<K>, &mut T)> + '_ {
         let used = self.used as usize;
-        self.slots
-            .slots_mut()
-            .iter_mut()
-            .take(used)
-            .enumerate()
-            .filter_map(|(i, s)| {
-                let generation = s.generation;
-                let value = s.value.as_mut()?;
-                Some((
-                    Handle {
-                        index: i as u32,
-                        generation,
-                        marker: PhantomData,
-                    },
-                    value,
-                ))
-            })
+        self.slots.slots_mut().iter_mut().take(used).enumerate().filter_map(|(i, s)| {
+            let generation = s.generation;
+            let value = s.value.as_mut()?;
+            Some((Handle { index: i as u32, generation, marker: PhantomData }, value))
+        })
     }
 
     /// The slots that have ever been used, for the step's index-ordered sweeps.
@@ -448,10 +402,7 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
 
     /// Generation and free-list link of slot `index`, for encoding.
     pub(crate) fn slot_meta(&self, index: u32) -> Option<(u32, u32)> {
-        self.slots
-            .slots()
-            .get(index as usize)
-            .map(|s| (s.generation, s.next_free))
+        self.slots.slots().get(index as usize).map(|s| (s.generation, s.next_free))
     }
 }
 

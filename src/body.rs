@@ -263,6 +263,11 @@ pub struct Body {
     pub(crate) radius: Scalar,
     /// World bounding box, refreshed whenever the body moves (derived state).
     pub(crate) aabb: Rect,
+    /// Velocity change from the force generators, spread over the sub-steps
+    /// (transient: zero outside `step`).
+    pub(crate) pending_v: Vector2,
+    /// Angular velocity change from the force generators (transient).
+    pub(crate) pending_w: Scalar,
 }
 
 impl Body {
@@ -310,7 +315,14 @@ impl Body {
     /// Velocity of the world point `p` attached to the body (m/s).
     #[must_use]
     pub fn velocity_at(&self, p: Vector2) -> Vector2 {
-        self.linear_velocity + Vector2::cross_sv(self.angular_velocity, p - self.position)
+        self.velocity_at_offset(p - self.position)
+    }
+
+    /// Velocity of the point at offset `r` from the centre of mass (m/s).
+    #[inline]
+    #[must_use]
+    pub fn velocity_at_offset(&self, r: Vector2) -> Vector2 {
+        self.linear_velocity + Vector2::cross_sv(self.angular_velocity, r)
     }
 
     /// The shape.
@@ -471,9 +483,8 @@ impl Body {
     /// Applies an angular impulse (N·m·s): Δω = L / I. Dynamic bodies only.
     pub fn apply_angular_impulse(&mut self, impulse: Scalar) {
         if self.is_dynamic() && !self.out_of_bounds {
-            self.angular_velocity = self
-                .angular_velocity
-                .saturating_add(impulse.saturating_mul(self.mass.inv_inertia));
+            self.angular_velocity =
+                self.angular_velocity.saturating_add(impulse.saturating_mul(self.mass.inv_inertia));
         }
     }
 

@@ -52,27 +52,19 @@ pub enum Error {
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::NotFinite { what } => write!(
-                f,
-                "`{what}` is NaN, infinite or out of the fixed-point range"
-            ),
+            Self::NotFinite { what } => {
+                write!(f, "`{what}` is NaN, infinite or out of the fixed-point range")
+            }
             Self::OutOfRange { what } => write!(f, "`{what}` is outside its allowed range"),
             Self::DegeneratePolygon => {
                 f.write_str("a polygon needs at least 3 distinct, non-collinear points")
             }
             Self::TooManyVertices { count, max } => {
-                write!(
-                    f,
-                    "the convex hull has {count} vertices; at most {max} are allowed"
-                )
+                write!(f, "the convex hull has {count} vertices; at most {max} are allowed")
             }
             Self::OutsideBounds => f.write_str("the position lies outside the world bounds"),
-            Self::InvalidTimeStep => {
-                f.write_str("the time step must be positive and at most MAX_TIME_STEP")
-            }
-            Self::StaleHandle => {
-                f.write_str("the handle refers to an object that no longer exists")
-            }
+            Self::InvalidTimeStep => f.write_str("the time step must be positive and at most MAX_TIME_STEP"),
+            Self::StaleHandle => f.write_str("the handle refers to an object that no longer exists"),
             Self::CapacityFull { what } => write!(f, "the {what} store is full"),
             Self::InvalidOperation { what } => write!(f, "invalid operation: {what}"),
         }

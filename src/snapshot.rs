@@ -7,6 +7,7 @@
 //! FNV-1a (64-bit) over exactly these bytes, so two peers whose hashes differ have
 //! different states, and equal states always hash equal.
 
+use crate::arbiter::Arbiter;
 use crate::arena::{Arena, SlotStorage};
 use crate::body::{Body, Shape};
 use crate::math::{Rect, Rot, Scalar, Vector2};
@@ -98,6 +99,32 @@ pub(crate) fn encode_body(s: &mut impl Sink, b: &Body) {
     s.u32(b.collision_level);
     s.u64(b.user_data);
     s.bool(b.out_of_bounds);
+}
+
+/// Writes one arbiter's persistent state: the pair, the lifecycle, the manifold
+/// and the accumulated impulses that warm-start the next step.
+pub(crate) fn encode_arbiter(s: &mut impl Sink, a: &Arbiter) {
+    for h in [a.body_a, a.body_b] {
+        s.u32(h.index());
+        s.u32(h.generation());
+    }
+    s.u32(a.level_a);
+    s.u32(a.level_b);
+    s.u8(a.state as u8);
+    s.u32(a.steps_separated);
+    s.vector(a.normal);
+    s.scalar(a.friction);
+    s.scalar(a.restitution);
+    s.u8(a.count);
+    for p in a.contact_points() {
+        s.vector(p.point);
+        s.scalar(p.separation);
+        s.put(&p.id.to_le_bytes());
+        s.scalar(p.normal_impulse);
+        s.scalar(p.tangent_impulse);
+        s.scalar(p.total_normal_impulse);
+        s.scalar(p.max_normal_impulse);
+    }
 }
 
 /// Writes an arena's allocator state and each used slot (generation, free-list

@@ -1,16 +1,27 @@
 //! The step pipeline.
 //!
-//! `World::step(dt)` runs these stages in this order, each a function below:
+//! `World::step(dt)` runs these stages in this order, each a function:
 //!
-//! 1. **validate**: `dt` in (0, [`MAX_TIME_STEP`]]; nothing changes on error.
-//! 2. **forces**: each force generator, in the order added, over the dynamic bodies
-//!    it accepts (slot order). Semi-implicit Euler: velocities change first.
-//! 3. **clamp**: speeds limited to the world's maxima.
-//! 4. **integrate**: positions advance with the new velocities, x += v·dt and
-//!    q ← q·(1 + i·ω·dt) renormalised.
-//! 5. **bounds**: a body whose centre left the bounds is frozen and reported.
+//! 1. **validate**: `dt` in (0, [`MAX_TIME_STEP`]].
+//! 2. **broad phase**: proxies and candidate pairs ([`crate::index`]). Every
+//!    capacity the step needs is checked here, before anything changes, so a step
+//!    either fails with an error and leaves the world as it was, or completes.
+//! 3. **forces**: each force generator, in the order added, over the dynamic
+//!    bodies it accepts (slot order). The velocity change is spread over the
+//!    sub-steps by the solver.
+//! 4. **narrow phase and arbiter lifecycle**: manifolds, states, and the `begin`,
+//!    `pre_solve` and `end` callbacks in canonical pair order ([`crate::collision`]).
+//! 5. **solve and integrate**: the sub-stepped soft contact solver, which also
+//!    advances positions ([`crate::solver`]), then the restitution pass.
+//! 6. **limits**: speeds clamped to the world's maxima; bodies whose centre left the
+//!    bounds are frozen and reported; bounding boxes refreshed.
+//! 7. **post_solve callbacks**, in canonical pair order.
+//! 8. **post-step callbacks**, once per key, in registration order, with
+//!    `&mut World`: the safe place to remove bodies. Callbacks registered while
+//!    these run (or outside a step) run after the next step.
 //!
-//! Every loop runs in body-slot order, a function of simulation history alone.
+//! Every loop runs in body-slot or pair-key order, functions of the simulation
+//! history alone.
 
 use crate::error::Error;
 use crate::math::scalar::{self, Scalar, ZERO};
@@ -22,61 +33,63 @@ impl World<'_> {
     /// Advances the simulation by `dt` seconds.
     ///
     /// # Errors
-    /// [`Error::InvalidTimeStep`] when `dt ≤ 0` or `dt > MAX_TIME_STEP`; the world
-    /// is then unchanged.
+    /// [`Error::InvalidTimeStep`] when `dt ≤ 0` or `dt > MAX_TIME_STEP`;
+    /// [`Error::CapacityFull`] when the candidate pairs or arbiters do not fit the
+    /// contact buffers. On error the world is unchanged.
     pub fn step(&mut self, dt: Scalar) -> Result<StepReport, Error> {
         if dt <= ZERO || dt > MAX_TIME_STEP {
             return Err(Error::InvalidTimeStep);
         }
+        let npairs = self.broad_phase(dt)?;
         self.apply_forces(dt);
-        self.clamp_velocities(dt);
-        let left_bounds = self.integrate_positions(dt);
+        self.update_arbiters(npairs, dt);
+        self.solve_and_integrate(dt);
+        let left_bounds = self.enforce_limits(dt);
+        self.post_solve_callbacks();
         self.step_count = self.step_count.wrapping_add(1);
-        Ok(StepReport { left_bounds })
+        let post_step_callbacks = self.run_post_step_callbacks();
+        Ok(StepReport { left_bounds, arbiters: self.contacts.arbiter_count as u32, post_step_callbacks })
     }
 
+    /// Runs the generators and turns their effect into a pending velocity change
+    /// (restoring the velocities), which the solver spreads over the sub-steps.
     fn apply_forces(&mut self, dt: Scalar) {
+        for (_, b) in self.bodies.iter_mut() {
+            b.pending_v = b.linear_velocity;
+            b.pending_w = b.angular_velocity;
+        }
         let used = self.generators.slots_used();
         for i in 0..used {
             if let Some(g) = self.generators.get_at_mut(i) {
                 g.run(&mut self.bodies, dt);
             }
         }
-    }
-
-    /// Limits every moving body's speed. Components are clamped first so the
-    /// length that follows cannot saturate; angular speed is also limited to a
-    /// quarter turn per step, which keeps the rotation update accurate.
-    fn clamp_velocities(&mut self, dt: Scalar) {
-        let vmax = self.def.max_linear_speed;
-        let quarter_turn = scalar::div(scalar::FRAC_PI_2.saturating_mul(scalar::HALF), dt);
-        let wmax = self.def.max_angular_speed.min(quarter_turn);
         for (_, b) in self.bodies.iter_mut() {
-            if !b.is_awake_mover() {
-                continue;
-            }
-            let v = b.linear_velocity;
-            let v = Vector2::new(
-                scalar::clamp(v.x, -vmax, vmax),
-                scalar::clamp(v.y, -vmax, vmax),
-            );
-            let (dir, len) = v.normalize_and_length();
-            b.linear_velocity = if len > vmax { dir * vmax } else { v };
-            b.angular_velocity = scalar::clamp(b.angular_velocity, -wmax, wmax);
+            let (v0, w0) = (b.pending_v, b.pending_w);
+            b.pending_v = b.linear_velocity - v0;
+            b.pending_w = b.angular_velocity.saturating_sub(w0);
+            b.linear_velocity = v0;
+            b.angular_velocity = w0;
         }
     }
 
-    /// Advances positions and rotations; freezes bodies that left the bounds.
-    /// Returns how many left this step.
-    fn integrate_positions(&mut self, dt: Scalar) -> u32 {
+    /// Speed limits, bounds and bounding boxes. Returns how many bodies left the
+    /// bounds this step.
+    fn enforce_limits(&mut self, dt: Scalar) -> u32 {
         let bounds = self.def.bounds;
+        let vmax = self.def.max_linear_speed;
+        let wmax = self.angular_limit(dt);
         let mut left = 0u32;
         for (_, b) in self.bodies.iter_mut() {
             if !b.is_awake_mover() {
                 continue;
             }
-            b.position += b.linear_velocity * dt;
-            b.rotation = b.rotation.integrate(b.angular_velocity.saturating_mul(dt));
+            // Components are clamped first so the length cannot saturate.
+            let v = b.linear_velocity;
+            let v = Vector2::new(scalar::clamp(v.x, -vmax, vmax), scalar::clamp(v.y, -vmax, vmax));
+            let (dir, len) = v.normalize_and_length();
+            b.linear_velocity = if len > vmax { dir * vmax } else { v };
+            b.angular_velocity = scalar::clamp(b.angular_velocity, -wmax, wmax);
             if !bounds.contains(b.position) {
                 b.out_of_bounds = true;
                 b.linear_velocity = Vector2::ZERO;
@@ -95,5 +108,15 @@ impl World<'_> {
             }
         }
         left
+    }
+
+    fn run_post_step_callbacks(&mut self) -> u32 {
+        let queue = core::mem::take(&mut self.post_step);
+        let mut ran = 0u32;
+        for (f, key) in queue {
+            f(self, key);
+            ran = ran.saturating_add(1);
+        }
+        ran
     }
 }

@@ -9,12 +9,16 @@
 
 use managed::ManagedSlice;
 
+use crate::arbiter::Arbiter;
 use crate::arena::{Arena, Handle, Slot};
 use crate::body::{Body, BodyDef, BodyHandle, BodyType, MassSpec, PathHandle, Shape};
+use crate::collision::{Contacts, Index};
 use crate::error::Error;
 use crate::force::Generator;
 use crate::geometry::circle::{circle_area, circle_unit_inertia};
 use crate::geometry::{MassData, PolygonPath};
+use crate::handler::{Handler, HandlerTable, PostStepQueue};
+use crate::index::Proxy;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rect, Rot, Vector2};
 use crate::snapshot::{self, Sink, StateHasher};
@@ -45,6 +49,15 @@ pub const MAX_ANGULAR_SPEED_LIMIT: Scalar = Scalar::const_from_int(256);
 /// Largest friction coefficient accepted.
 pub const MAX_FRICTION: Scalar = Scalar::const_from_int(100);
 
+/// Speculative contact distance, in metres (Box2D v3's 4 × linear slop): shapes
+/// closer than this get contact points before they touch, so the solver can stop
+/// them meeting without overshoot, and "touching" for the callbacks means "within
+/// this distance".
+pub const SPECULATIVE_DISTANCE: Scalar = Scalar::lit("0.02");
+
+/// Most solver sub-steps per step.
+pub const MAX_SUBSTEPS: u32 = 16;
+
 /// World configuration; every option has a default.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct WorldDef {
@@ -57,16 +70,28 @@ pub struct WorldDef {
     /// Angular speed limit, rad/s (default 200, at most
     /// [`MAX_ANGULAR_SPEED_LIMIT`]). The step also limits rotation to π/4 per step.
     pub max_angular_speed: Scalar,
+    /// Solver sub-steps per step, 1 to [`MAX_SUBSTEPS`] (default 4). More
+    /// sub-steps stack better and cost proportionally more.
+    pub substeps: u32,
+    /// Contact stiffness, Hz (default 30; capped at a quarter of the sub-step rate).
+    pub contact_hertz: Scalar,
+    /// Contact damping ratio (default 10: heavily damped, no bounce from push-out).
+    pub contact_damping_ratio: Scalar,
+    /// Fastest speed at which overlap is pushed out, m/s (default 3).
+    pub contact_push_speed: Scalar,
+    /// Contacts approaching slower than this (m/s) do not bounce (default 1), so
+    /// resting bodies settle instead of jittering.
+    pub restitution_threshold: Scalar,
+    /// Steps an arbiter is kept after its bodies stop touching, counting the step
+    /// they separate (default 3; the manual's persistence).
+    pub arbiter_persistence: u32,
 }
 
 impl WorldDef {
     /// The manual's world: bounds from (0, 0) to (`width`, `height`) metres.
     #[must_use]
     pub fn new(width: Scalar, height: Scalar) -> Self {
-        Self::with_bounds(Rect {
-            min: Vector2::ZERO,
-            max: Vector2::new(width, height),
-        })
+        Self::with_bounds(Rect { min: Vector2::ZERO, max: Vector2::new(width, height) })
     }
 
     /// A world with arbitrary bounds (e.g. centred on the origin).
@@ -76,6 +101,12 @@ impl WorldDef {
             bounds,
             max_linear_speed: Scalar::const_from_int(400),
             max_angular_speed: Scalar::const_from_int(200),
+            substeps: 4,
+            contact_hertz: Scalar::const_from_int(30),
+            contact_damping_ratio: Scalar::const_from_int(10),
+            contact_push_speed: Scalar::const_from_int(3),
+            restitution_threshold: Scalar::const_from_int(1),
+            arbiter_persistence: 3,
         }
     }
 
@@ -83,22 +114,16 @@ impl WorldDef {
         let b = self.bounds;
         let inside = |v: Scalar| v.saturating_abs() <= MAX_COORDINATE;
         if !(inside(b.min.x) && inside(b.min.y) && inside(b.max.x) && inside(b.max.y)) {
-            return Err(Error::OutOfRange {
-                what: "world bounds",
-            });
+            return Err(Error::OutOfRange { what: "world bounds" });
         }
         if b.min.x >= b.max.x || b.min.y >= b.max.y {
             return Err(Error::OutOfRange { what: "world size" });
         }
         if self.max_linear_speed <= ZERO || self.max_linear_speed > MAX_LINEAR_SPEED_LIMIT {
-            return Err(Error::OutOfRange {
-                what: "max_linear_speed",
-            });
+            return Err(Error::OutOfRange { what: "max_linear_speed" });
         }
         if self.max_angular_speed <= ZERO || self.max_angular_speed > MAX_ANGULAR_SPEED_LIMIT {
-            return Err(Error::OutOfRange {
-                what: "max_angular_speed",
-            });
+            return Err(Error::OutOfRange { what: "max_angular_speed" });
         }
         Ok(())
     }
@@ -124,6 +149,9 @@ pub struct Capacities {
     pub bodies: usize,
     /// Shared polygon paths.
     pub paths: usize,
+    /// Candidate pairs per step and arbiters (pairs of bodies in contact, or kept
+    /// for persistence). A stack needs about 2 per body, a dense pile about 4.
+    pub contacts: usize,
 }
 
 impl Default for Capacities {
@@ -133,13 +161,11 @@ impl Default for Capacities {
 }
 
 impl Capacities {
-    /// Room for `bodies` bodies, each with its own polygon path.
+    /// Room for `bodies` bodies, each with its own polygon path, and 4 contacts
+    /// per body.
     #[must_use]
     pub fn for_bodies(bodies: usize) -> Self {
-        Self {
-            bodies,
-            paths: bodies,
-        }
+        Self { bodies, paths: bodies, contacts: bodies.saturating_mul(4) }
     }
 }
 
@@ -149,6 +175,16 @@ pub struct Storage<'a> {
     pub bodies: ManagedSlice<'a, Slot<Body>>,
     /// Polygon path slots.
     pub paths: ManagedSlice<'a, Slot<PolygonPath>>,
+    /// Broad-phase proxies, one per body (scratch).
+    pub proxies: ManagedSlice<'a, Proxy>,
+    /// Body slot of each proxy, one per body (scratch).
+    pub proxy_bodies: ManagedSlice<'a, u32>,
+    /// Candidate pairs (scratch); its length is the pair capacity.
+    pub pairs: ManagedSlice<'a, (u32, u32)>,
+    /// Arbiters; its length is the arbiter capacity.
+    pub arbiters: ManagedSlice<'a, Arbiter>,
+    /// The arbiter buffer the next step writes into; same length as `arbiters`.
+    pub arbiters_next: ManagedSlice<'a, Arbiter>,
 }
 
 impl Storage<'_> {
@@ -161,28 +197,49 @@ impl Storage<'_> {
             v.resize_with(n, || Slot::EMPTY);
             v
         }
+        fn plain<T: Clone>(n: usize, v: T) -> alloc::vec::Vec<T> {
+            alloc::vec![v; n]
+        }
+        let empty_proxy = Proxy { aabb: Rect::default(), is_static: false };
         Self {
             bodies: ManagedSlice::Owned(buf(c.bodies)),
             paths: ManagedSlice::Owned(buf(c.paths)),
+            proxies: ManagedSlice::Owned(plain(c.bodies, empty_proxy)),
+            proxy_bodies: ManagedSlice::Owned(plain(c.bodies, 0)),
+            pairs: ManagedSlice::Owned(plain(c.contacts, (0, 0))),
+            arbiters: ManagedSlice::Owned(plain(c.contacts, Arbiter::EMPTY)),
+            arbiters_next: ManagedSlice::Owned(plain(c.contacts, Arbiter::EMPTY)),
         }
     }
 }
 
 /// Statically sized buffers for a world that needs no allocator: `BODIES` bodies
-/// and as many polygon paths. `new` is `const`, so the buffers can be a `static`
-/// (e.g. in a `static_cell::StaticCell`) or a local.
-pub struct WorldBuffers<const BODIES: usize> {
+/// and as many polygon paths, `CONTACTS` candidate pairs and arbiters. `new` is
+/// `const`, so the buffers can be a `static` (e.g. in a `static_cell::StaticCell`)
+/// or a local.
+pub struct WorldBuffers<const BODIES: usize, const CONTACTS: usize> {
     bodies: [Slot<Body>; BODIES],
     paths: [Slot<PolygonPath>; BODIES],
+    proxies: [Proxy; BODIES],
+    proxy_bodies: [u32; BODIES],
+    pairs: [(u32, u32); CONTACTS],
+    arbiters: [Arbiter; CONTACTS],
+    arbiters_next: [Arbiter; CONTACTS],
 }
 
-impl<const BODIES: usize> WorldBuffers<BODIES> {
+impl<const BODIES: usize, const CONTACTS: usize> WorldBuffers<BODIES, CONTACTS> {
     /// Empty buffers.
     #[must_use]
     pub const fn new() -> Self {
+        let empty_proxy = Proxy { aabb: Rect { min: Vector2::ZERO, max: Vector2::ZERO }, is_static: false };
         Self {
             bodies: [Slot::EMPTY; BODIES],
             paths: [Slot::EMPTY; BODIES],
+            proxies: [empty_proxy; BODIES],
+            proxy_bodies: [0; BODIES],
+            pairs: [(0, 0); CONTACTS],
+            arbiters: [Arbiter::EMPTY; CONTACTS],
+            arbiters_next: [Arbiter::EMPTY; CONTACTS],
         }
     }
 
@@ -191,11 +248,16 @@ impl<const BODIES: usize> WorldBuffers<BODIES> {
         Storage {
             bodies: ManagedSlice::Borrowed(&mut self.bodies[..]),
             paths: ManagedSlice::Borrowed(&mut self.paths[..]),
+            proxies: ManagedSlice::Borrowed(&mut self.proxies[..]),
+            proxy_bodies: ManagedSlice::Borrowed(&mut self.proxy_bodies[..]),
+            pairs: ManagedSlice::Borrowed(&mut self.pairs[..]),
+            arbiters: ManagedSlice::Borrowed(&mut self.arbiters[..]),
+            arbiters_next: ManagedSlice::Borrowed(&mut self.arbiters_next[..]),
         }
     }
 }
 
-impl<const BODIES: usize> Default for WorldBuffers<BODIES> {
+impl<const BODIES: usize, const CONTACTS: usize> Default for WorldBuffers<BODIES, CONTACTS> {
     fn default() -> Self {
         Self::new()
     }
@@ -207,6 +269,10 @@ pub struct StepReport {
     /// Bodies that left the bounds this step (now frozen; see
     /// [`World::out_of_bounds_bodies`]).
     pub left_bounds: u32,
+    /// Arbiters alive after the step (touching pairs and persisted ones).
+    pub arbiters: u32,
+    /// Post-step callbacks that ran after the step.
+    pub post_step_callbacks: u32,
 }
 
 /// The simulation: bodies, shared polygon paths, force generators, and `step`.
@@ -216,6 +282,10 @@ pub struct World<'a> {
     pub(crate) paths: Arena<'a, PolygonPath>,
     pub(crate) generators:
         Arena<'a, Generator<'a>, GeneratorMarker, [Slot<Generator<'a>>; MAX_FORCE_GENERATORS]>,
+    pub(crate) index: Index<'a>,
+    pub(crate) handlers: HandlerTable<'a>,
+    pub(crate) post_step: PostStepQueue,
+    pub(crate) contacts: Contacts<'a>,
     pub(crate) step_count: u64,
 }
 
@@ -224,14 +294,36 @@ impl<'a> World<'a> {
     ///
     /// # Errors
     /// [`Error::OutOfRange`] for bounds that are empty or exceed
-    /// ±[`MAX_COORDINATE`], or speed limits outside their ranges.
+    /// ±[`MAX_COORDINATE`], or settings outside their ranges;
+    /// [`Error::InvalidOperation`] when the proxy buffers are shorter than the
+    /// body buffer or the two arbiter buffers differ in length.
     pub fn new(def: WorldDef, storage: Storage<'a>) -> Result<Self, Error> {
         def.validate()?;
+        let nb = storage.bodies.len();
+        if storage.proxies.len() < nb || storage.proxy_bodies.len() < nb {
+            return Err(Error::InvalidOperation { what: "proxy buffers must hold one entry per body" });
+        }
+        if storage.arbiters.len() != storage.arbiters_next.len() {
+            return Err(Error::InvalidOperation {
+                what: "the two arbiter buffers must have the same length",
+            });
+        }
         Ok(Self {
             def,
             bodies: Arena::new(storage.bodies),
             paths: Arena::new(storage.paths),
             generators: Arena::inline(),
+            index: Index::default(),
+            handlers: HandlerTable::new(),
+            post_step: PostStepQueue::new(),
+            contacts: Contacts {
+                proxies: storage.proxies,
+                proxy_bodies: storage.proxy_bodies,
+                pairs: storage.pairs,
+                arbiters: storage.arbiters,
+                next: storage.arbiters_next,
+                arbiter_count: 0,
+            },
             step_count: 0,
         })
     }
@@ -270,9 +362,7 @@ impl<'a> World<'a> {
     /// # Errors
     /// [`Error::CapacityFull`] when the path store is full.
     pub fn add_path(&mut self, path: PolygonPath) -> Result<PathHandle, Error> {
-        self.paths
-            .insert(path)
-            .map_err(|_| Error::CapacityFull { what: "path" })
+        self.paths.insert(path).map_err(|_| Error::CapacityFull { what: "path" })
     }
 
     /// The path behind `h`.
@@ -291,14 +381,8 @@ impl<'a> World<'a> {
         if !self.paths.contains(h) {
             return Err(Error::StaleHandle);
         }
-        if self
-            .bodies
-            .iter()
-            .any(|(_, b)| b.shape == Shape::Polygon(h))
-        {
-            return Err(Error::InvalidOperation {
-                what: "remove a path that bodies use",
-            });
+        if self.bodies.iter().any(|(_, b)| b.shape == Shape::Polygon(h)) {
+            return Err(Error::InvalidOperation { what: "remove a path that bodies use" });
         }
         self.paths.remove(h).ok_or(Error::StaleHandle)
     }
@@ -314,9 +398,7 @@ impl<'a> World<'a> {
     /// world; [`Error::CapacityFull`] when the body store is full.
     pub fn add_body(&mut self, def: BodyDef) -> Result<BodyHandle, Error> {
         let body = self.build_body(&def)?;
-        self.bodies
-            .insert(body)
-            .map_err(|_| Error::CapacityFull { what: "body" })
+        self.bodies.insert(body).map_err(|_| Error::CapacityFull { what: "body" })
     }
 
     fn build_body(&self, def: &BodyDef) -> Result<Body, Error> {
@@ -330,9 +412,7 @@ impl<'a> World<'a> {
             Shape::Polygon(h) => {
                 let p = self.paths.get(h).ok_or(Error::StaleHandle)?;
                 if p.radius() > MAX_BODY_RADIUS {
-                    return Err(Error::OutOfRange {
-                        what: "polygon size",
-                    });
+                    return Err(Error::OutOfRange { what: "polygon size" });
                 }
                 (p.area(), p.unit_inertia(), p.radius())
             }
@@ -344,42 +424,30 @@ impl<'a> World<'a> {
                 MassData::STATIC
             }
             (BodyType::Dynamic, MassSpec::Mass(m)) => MassData::from_mass(m, area, unit_inertia)?,
-            (BodyType::Dynamic, MassSpec::Density(d)) => {
-                MassData::from_density(d, area, unit_inertia)?
-            }
+            (BodyType::Dynamic, MassSpec::Density(d)) => MassData::from_density(d, area, unit_inertia)?,
             _ => MassData::STATIC,
         };
         if def.friction < ZERO || def.friction > MAX_FRICTION {
             return Err(Error::OutOfRange { what: "friction" });
         }
         if def.restitution < ZERO || def.restitution > scalar::ONE {
-            return Err(Error::OutOfRange {
-                what: "restitution",
-            });
+            return Err(Error::OutOfRange { what: "restitution" });
         }
         let rotation = normalized_rotation(def.rotation)?;
         if !self.def.bounds.contains(def.position) {
             return Err(Error::OutsideBounds);
         }
         let moving = body_type != BodyType::Static;
-        let v = if moving {
-            def.linear_velocity
-        } else {
-            Vector2::ZERO
-        };
+        let v = if moving { def.linear_velocity } else { Vector2::ZERO };
         let w = if moving { def.angular_velocity } else { ZERO };
         if v.x.saturating_abs() > self.def.max_linear_speed
             || v.y.saturating_abs() > self.def.max_linear_speed
             || v.length() > self.def.max_linear_speed
         {
-            return Err(Error::OutOfRange {
-                what: "linear velocity",
-            });
+            return Err(Error::OutOfRange { what: "linear velocity" });
         }
         if w.saturating_abs() > self.def.max_angular_speed {
-            return Err(Error::OutOfRange {
-                what: "angular velocity",
-            });
+            return Err(Error::OutOfRange { what: "angular velocity" });
         }
         let mut body = Body {
             position: def.position,
@@ -397,16 +465,24 @@ impl<'a> World<'a> {
             out_of_bounds: false,
             radius,
             aabb: Rect::default(),
+            pending_v: Vector2::ZERO,
+            pending_w: ZERO,
         };
         body.aabb = compute_aabb(&body, &self.paths);
         Ok(body)
     }
 
-    /// Removes a body and returns it.
+    /// Removes a body and returns it. Its arbiters end at once: `end` is called
+    /// for each pair that had begun (the body is still readable then), in pair
+    /// order, and the arbiters are dropped. Safe to call from a post-step callback.
     ///
     /// # Errors
     /// [`Error::StaleHandle`].
     pub fn remove_body(&mut self, h: BodyHandle) -> Result<Body, Error> {
+        if !self.bodies.contains(h) {
+            return Err(Error::StaleHandle);
+        }
+        self.end_arbiters_of(h.index());
         self.bodies.remove(h).ok_or(Error::StaleHandle)
     }
 
@@ -439,10 +515,7 @@ impl<'a> World<'a> {
 
     /// Bodies frozen after leaving the bounds.
     pub fn out_of_bounds_bodies(&self) -> impl Iterator<Item = BodyHandle> + '_ {
-        self.bodies
-            .iter()
-            .filter(|(_, b)| b.out_of_bounds)
-            .map(|(h, _)| h)
+        self.bodies.iter().filter(|(_, b)| b.out_of_bounds).map(|(h, _)| h)
     }
 
     /// Moves a body (teleport). Brings a frozen body back into play.
@@ -499,15 +572,8 @@ impl<'a> World<'a> {
     ///
     /// # Errors
     /// [`Error::CapacityFull`] when the generator store is full.
-    pub fn add_force_generator(
-        &mut self,
-        g: impl Into<Generator<'a>>,
-    ) -> Result<GeneratorHandle, Error> {
-        self.generators
-            .insert(g.into())
-            .map_err(|_| Error::CapacityFull {
-                what: "force generator",
-            })
+    pub fn add_force_generator(&mut self, g: impl Into<Generator<'a>>) -> Result<GeneratorHandle, Error> {
+        self.generators.insert(g.into()).map_err(|_| Error::CapacityFull { what: "force generator" })
     }
 
     /// Removes a force generator and returns it.
@@ -524,6 +590,55 @@ impl<'a> World<'a> {
     /// [`Error::StaleHandle`].
     pub fn force_generator_mut(&mut self, h: GeneratorHandle) -> Result<&mut Generator<'a>, Error> {
         self.generators.get_mut(h).ok_or(Error::StaleHandle)
+    }
+
+    // ---- collisions ----------------------------------------------------------
+
+    /// Replaces the spatial index (the manual's custom indexing system).
+    pub fn set_spatial_index(&mut self, index: Index<'a>) {
+        self.index = index;
+    }
+
+    /// Registers a handler for collisions between bodies of levels `a` and `b`
+    /// (either order; `a == b` allowed). The manual's `addCollisionHandler`,
+    /// which reported failure by returning false.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOperation`] when a handler for these levels exists;
+    /// [`Error::CapacityFull`] when
+    /// [`MAX_COLLISION_HANDLERS`](crate::handler::MAX_COLLISION_HANDLERS) are registered.
+    pub fn add_collision_handler(
+        &mut self,
+        a: u32,
+        b: u32,
+        handler: impl Into<Handler<'a>>,
+    ) -> Result<(), Error> {
+        self.handlers.add(a, b, handler.into())
+    }
+
+    /// Removes and returns the handler for levels `a` and `b`, if any.
+    pub fn remove_collision_handler(&mut self, a: u32, b: u32) -> Option<Handler<'a>> {
+        self.handlers.remove(a, b)
+    }
+
+    /// Replaces the default handler (used for level pairs without their own);
+    /// `None` restores "resolve everything". Returns the previous one.
+    pub fn set_default_collision_handler(&mut self, handler: Option<Handler<'a>>) -> Option<Handler<'a>> {
+        self.handlers.set_default(handler)
+    }
+
+    /// The arbiters (touching or persisting pairs), in canonical pair order.
+    pub fn arbiters(&self) -> impl Iterator<Item = &Arbiter> + '_ {
+        self.contacts.live().iter()
+    }
+
+    /// The arbiter of two bodies, if they touch or recently touched.
+    #[must_use]
+    pub fn arbiter(&self, a: BodyHandle, b: BodyHandle) -> Option<&Arbiter> {
+        let key = if a.index() <= b.index() { (a.index(), b.index()) } else { (b.index(), a.index()) };
+        let live = self.contacts.live();
+        let i = live.binary_search_by(|arb| arb.key().cmp(&key)).ok()?;
+        live.get(i).filter(|arb| (arb.body_a == a && arb.body_b == b) || (arb.body_a == b && arb.body_b == a))
     }
 
     // ---- state ---------------------------------------------------------------
@@ -546,6 +661,10 @@ impl<'a> World<'a> {
         s.scalar(self.def.max_linear_speed);
         s.scalar(self.def.max_angular_speed);
         snapshot::encode_arena(s, &self.bodies, |s, b| snapshot::encode_body(s, b));
+        s.u32(self.contacts.arbiter_count as u32);
+        for arb in self.contacts.live() {
+            snapshot::encode_arbiter(s, arb);
+        }
     }
 }
 
@@ -563,16 +682,7 @@ pub(crate) fn compute_aabb(b: &Body, paths: &Arena<'_, PolygonPath>) -> Rect {
                 let xf = b.transform();
                 let mut it = p.vertices().iter().map(|v| xf.apply(*v));
                 let first = it.next().unwrap_or(b.position);
-                it.fold(
-                    Rect {
-                        min: first,
-                        max: first,
-                    },
-                    |r, v| Rect {
-                        min: r.min.min(v),
-                        max: r.max.max(v),
-                    },
-                )
+                it.fold(Rect { min: first, max: first }, |r, v| Rect { min: r.min.min(v), max: r.max.max(v) })
             }
             None => Rect::from_center(b.position, Vector2::new(b.radius, b.radius)),
         },

@@ -63,9 +63,7 @@ impl Place {
 
 fn place(x: f64, y: f64, angle: f64) -> Place {
     let q = Rot::from_direction(Vector2::new(s(angle.cos()), s(angle.sin()))).unwrap_or_default();
-    Place {
-        xf: Transform::new(Vector2::new(s(x), s(y)), q),
-    }
+    Place { xf: Transform::new(Vector2::new(s(x), s(y)), q) }
 }
 
 fn arb_place() -> impl Strategy<Value = Place> {
@@ -110,9 +108,7 @@ fn best_face_separation(a: &[P; 4], b: &[P; 4]) -> f64 {
             let (p, q) = (a[i], a[(i + 1) % 4]);
             let e = sub(q, p);
             let n = (e.1 / len(e), -e.0 / len(e));
-            b.iter()
-                .map(|w| dot(n, sub(*w, p)))
-                .fold(f64::INFINITY, f64::min)
+            b.iter().map(|w| dot(n, sub(*w, p))).fold(f64::INFINITY, f64::min)
         })
         .fold(f64::NEG_INFINITY, f64::max)
 }
@@ -141,19 +137,10 @@ fn check_common(m: &Manifold, margin: Scalar) -> Result<(), TestCaseError> {
     prop_assert!(m.count <= 2);
     prop_assert_eq!(m.points().len(), m.count);
     if m.count > 0 {
-        prop_assert!(
-            (len(f(m.normal)) - 1.0).abs() < EPS,
-            "normal {:?}",
-            m.normal
-        );
+        prop_assert!((len(f(m.normal)) - 1.0).abs() < EPS, "normal {:?}", m.normal);
     }
     for p in m.points() {
-        prop_assert!(
-            p.separation <= margin,
-            "{:?} > margin {:?}",
-            p.separation,
-            margin
-        );
+        prop_assert!(p.separation <= margin, "{:?} > margin {:?}", p.separation, margin);
     }
     Ok(())
 }
@@ -164,13 +151,7 @@ fn check_inside(m: &Manifold, distance_to_shape: impl Fn(P) -> f64) -> Result<()
     for p in m.points() {
         let d = distance_to_shape(f(p.point));
         let allowed = to_f64(p.separation).abs() + 1e-4;
-        prop_assert!(
-            d <= allowed,
-            "point {:?} is {} from the shape (allowed {})",
-            p.point,
-            d,
-            allowed
-        );
+        prop_assert!(d <= allowed, "point {:?} is {} from the shape (allowed {})", p.point, d, allowed);
     }
     Ok(())
 }
@@ -185,10 +166,7 @@ fn check_anchors(m: &Manifold, a: Place, b: Place) -> Result<(), TestCaseError> 
 }
 
 fn min_separation(m: &Manifold) -> f64 {
-    m.points()
-        .iter()
-        .map(|p| to_f64(p.separation))
-        .fold(f64::INFINITY, f64::min)
+    m.points().iter().map(|p| to_f64(p.separation)).fold(f64::INFINITY, f64::min)
 }
 
 proptest! {

@@ -6,8 +6,8 @@ use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use arphysics::{
-    BodyDef, GravityForceGenerator, GravityToPointForceGenerator, LinearForceGenerator,
-    PolygonPath, Scalar, Targets, Vector2, World, WorldBuffers, WorldDef,
+    BodyDef, GravityForceGenerator, GravityToPointForceGenerator, LinearForceGenerator, PolygonPath, Scalar,
+    Targets, Vector2, World, WorldBuffers, WorldDef,
 };
 
 struct Counting;
@@ -47,31 +47,18 @@ static GLOBAL: Counting = Counting;
 #[test]
 fn a_hundred_steps_allocate_nothing() {
     let s = Scalar::from_num::<f64>;
-    let mut buffers = WorldBuffers::<64>::new();
-    let mut world =
-        World::new(WorldDef::new(s(200.0), s(200.0)), buffers.storage()).expect("world");
-    let path = world
-        .add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box"))
-        .expect("path");
+    let mut buffers = WorldBuffers::<64, 256>::new();
+    let mut world = World::new(WorldDef::new(s(200.0), s(200.0)), buffers.storage()).expect("world");
+    let path = world.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("path");
     let mut handles = Vec::new();
     for i in 0..20 {
         let x = s(10.0 + 8.0 * f64::from(i));
-        handles.push(
-            world
-                .add_body(BodyDef::circle(s(0.5)).position(Vector2::new(x, s(150.0))))
-                .expect("c"),
-        );
+        handles.push(world.add_body(BodyDef::circle(s(0.5)).position(Vector2::new(x, s(150.0)))).expect("c"));
         world
-            .add_body(
-                BodyDef::polygon(path)
-                    .position(Vector2::new(x, s(100.0)))
-                    .angular_velocity(s(1.0)),
-            )
+            .add_body(BodyDef::polygon(path).position(Vector2::new(x, s(100.0))).angular_velocity(s(1.0)))
             .expect("p");
     }
-    world
-        .add_force_generator(GravityForceGenerator::new(Vector2::new(s(0.0), s(-9.81))))
-        .expect("g");
+    world.add_force_generator(GravityForceGenerator::new(Vector2::new(s(0.0), s(-9.81)))).expect("g");
     world
         .add_force_generator(
             LinearForceGenerator::new(Vector2::new(s(3.0), s(0.0)))
@@ -79,10 +66,7 @@ fn a_hundred_steps_allocate_nothing() {
         )
         .expect("l");
     world
-        .add_force_generator(GravityToPointForceGenerator::new(
-            Vector2::new(s(100.0), s(100.0)),
-            s(1.0),
-        ))
+        .add_force_generator(GravityToPointForceGenerator::new(Vector2::new(s(100.0), s(100.0)), s(1.0)))
         .expect("p");
 
     COUNTING.with(|c| c.set(true));
@@ -91,9 +75,5 @@ fn a_hundred_steps_allocate_nothing() {
     }
     let _ = world.state_hash();
     COUNTING.with(|c| c.set(false));
-    assert_eq!(
-        ALLOCATIONS.load(Ordering::SeqCst),
-        0,
-        "allocations during 100 steps"
-    );
+    assert_eq!(ALLOCATIONS.load(Ordering::SeqCst), 0, "allocations during 100 steps");
 }

@@ -61,26 +61,15 @@ fn sin_cos_errors(x: Scalar) -> (f64, f64) {
 fn check_sin_cos(x: Scalar) {
     let (e_s, e_c) = sin_cos_errors(x);
     assert!(e_s <= CONTRACT && e_c <= CONTRACT, "contract: x = {x:?}");
-    assert!(
-        e_s <= SIN_COS_TIGHT,
-        "sin({x:?}) error {e_s:e} ({} ulp)",
-        e_s / ULP
-    );
-    assert!(
-        e_c <= SIN_COS_TIGHT,
-        "cos({x:?}) error {e_c:e} ({} ulp)",
-        e_c / ULP
-    );
+    assert!(e_s <= SIN_COS_TIGHT, "sin({x:?}) error {e_s:e} ({} ulp)", e_s / ULP);
+    assert!(e_c <= SIN_COS_TIGHT, "cos({x:?}) error {e_c:e} ({} ulp)", e_c / ULP);
 }
 
 /// Absolute error of `atan2(y, x)` (0 for the documented `atan2(0, 0) = 0`),
 /// after checking the result is within ±`Scalar::PI` (hence in (−π, π]).
 fn atan2_error(y: Scalar, x: Scalar) -> f64 {
     let a = atan2(y, x);
-    assert!(
-        a >= -Scalar::PI && a <= Scalar::PI,
-        "atan2({y:?}, {x:?}) = {a:?}"
-    );
+    assert!(a >= -Scalar::PI && a <= Scalar::PI, "atan2({y:?}, {x:?}) = {a:?}");
     if x == Scalar::ZERO && y == Scalar::ZERO {
         assert_eq!(a, Scalar::ZERO);
         return 0.0;
@@ -91,11 +80,7 @@ fn atan2_error(y: Scalar, x: Scalar) -> f64 {
 fn check_atan2(y: Scalar, x: Scalar) {
     let e = atan2_error(y, x);
     assert!(e <= CONTRACT, "contract: atan2({y:?}, {x:?})");
-    assert!(
-        e <= ATAN2_TIGHT,
-        "atan2({y:?}, {x:?}) error {e:e} ({} ulp)",
-        e / ULP
-    );
+    assert!(e <= ATAN2_TIGHT, "atan2({y:?}, {x:?}) error {e:e} ({} ulp)", e / ULP);
 }
 
 /// The Q32.32 value nearest `k·π/2 + offset·2^-32`.
@@ -103,9 +88,7 @@ fn near_multiple_of_frac_pi_2(k: i32, offset: i32) -> Scalar {
     // |k|·⌊(π/2)·2^80⌋ < 2^31·2^81: no i128 overflow.
     let exact = i128::from(k) * FRAC_PI_2_Q80;
     let bits = (exact + (1 << 47)) >> 48;
-    let bits = i64::try_from(bits)
-        .unwrap()
-        .saturating_add(i64::from(offset));
+    let bits = i64::try_from(bits).unwrap().saturating_add(i64::from(offset));
     Scalar::from_bits(bits)
 }
 
@@ -280,10 +263,7 @@ fn exact_special_values() {
     assert_eq!(atan2(one, one), Scalar::FRAC_PI_4);
     assert_eq!(atan2(-one, -one), -q(3.0 * core::f64::consts::FRAC_PI_4));
     assert_eq!(atan2(Scalar::MAX, Scalar::MAX), Scalar::FRAC_PI_4);
-    assert_eq!(
-        atan2(Scalar::MIN, Scalar::MIN),
-        -q(3.0 * core::f64::consts::FRAC_PI_4)
-    );
+    assert_eq!(atan2(Scalar::MIN, Scalar::MIN), -q(3.0 * core::f64::consts::FRAC_PI_4));
     assert_eq!(atan(one), Scalar::FRAC_PI_4);
     // atan(±2^31) = ±(π/2 − 2^-31): two ulps inside ±FRAC_PI_2.
     assert_eq!(atan(Scalar::MIN), -Scalar::FRAC_PI_2 + 2 * Scalar::DELTA);
@@ -346,11 +326,7 @@ impl SplitMix64 {
         // Uniform bits, then a random right shift so every scale is covered.
         let bits = self.next() as i64;
         let shift = (self.next() % 64) as u32;
-        Scalar::from_bits(if shift < 16 {
-            bits
-        } else {
-            bits >> (shift - 16)
-        })
+        Scalar::from_bits(if shift < 16 { bits } else { bits >> (shift - 16) })
     }
 }
 
@@ -365,10 +341,7 @@ fn max_error_report() {
         let x = match i % 3 {
             0 => rng.scalar(),
             1 => Scalar::from_bits((rng.next() as i64) >> 28), // |x| ≤ 8
-            _ => near_multiple_of_frac_pi_2(
-                (rng.next() as i32) >> 1,
-                ((rng.next() % 2001) as i32) - 1000,
-            ),
+            _ => near_multiple_of_frac_pi_2((rng.next() as i32) >> 1, ((rng.next() % 2001) as i32) - 1000),
         };
         let (es, ec) = sin_cos_errors(x);
         max_s = max_s.max(es);

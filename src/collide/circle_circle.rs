@@ -31,11 +31,7 @@ pub fn collide_circles(
     }
     // A's surface is at radius_a along the normal; B's is `separation` further.
     let point = normal * radius_a.saturating_add(half(separation));
-    let local = LocalPoint {
-        point,
-        separation,
-        id: 0,
-    };
+    let local = LocalPoint { point, separation, id: 0 };
     Manifold::from_local(xf_a, xf_b.p, normal, &[local], false)
 }
 
@@ -66,28 +62,17 @@ mod tests {
     #[test]
     fn far_from_the_origin_gives_the_same_relative_answer() {
         let far = from_int(1_000_000);
-        let m = collide_circles(
-            ONE,
-            at(far, far),
-            ONE,
-            at(far, far.saturating_add(Scalar::lit("1.5"))),
-            ZERO,
-        );
+        let m =
+            collide_circles(ONE, at(far, far), ONE, at(far, far.saturating_add(Scalar::lit("1.5"))), ZERO);
         assert_eq!(m.normal, Vector2::Y);
         assert_eq!(m.points[0].separation, Scalar::lit("-0.5"));
-        assert_eq!(
-            m.points[0].point,
-            Vector2::new(far, far.saturating_add(Scalar::lit("0.75")))
-        );
+        assert_eq!(m.points[0].point, Vector2::new(far, far.saturating_add(Scalar::lit("0.75"))));
     }
 
     #[test]
     fn the_margin_decides_speculative_contacts() {
         let gap = at(Scalar::lit("2.25"), ZERO);
-        assert_eq!(
-            collide_circles(ONE, at(ZERO, ZERO), ONE, gap, ZERO).count,
-            0
-        );
+        assert_eq!(collide_circles(ONE, at(ZERO, ZERO), ONE, gap, ZERO).count, 0);
         let m = collide_circles(ONE, at(ZERO, ZERO), ONE, gap, Scalar::lit("0.25"));
         assert_eq!(m.count, 1);
         assert_eq!(m.points[0].separation, Scalar::lit("0.25"));
@@ -107,10 +92,7 @@ mod tests {
         assert!(close(m.normal, q.x_axis()), "{:?}", m.normal);
         assert_eq!(m.points[0].separation, from_int(-3));
         // Midway between A's surface (+1 along the normal) and B's (−2).
-        assert!(close(
-            m.points[0].anchor_a,
-            q.x_axis() * Scalar::lit("-0.5")
-        ));
+        assert!(close(m.points[0].anchor_a, q.x_axis() * Scalar::lit("-0.5")));
     }
 
     #[test]
@@ -133,13 +115,7 @@ mod tests {
         assert_eq!((ab.count, ba.count), (1, 1));
         assert!(close(ab.normal, -ba.normal));
         assert!(close(ab.points[0].point, ba.points[0].point));
-        assert!(
-            ab.points[0]
-                .separation
-                .saturating_sub(ba.points[0].separation)
-                .abs()
-                < TOL
-        );
+        assert!(ab.points[0].separation.saturating_sub(ba.points[0].separation).abs() < TOL);
         assert!(close(ab.points[0].anchor_a, ba.points[0].anchor_b));
     }
 }

@@ -58,11 +58,8 @@ pub struct Manifold {
 
 impl Manifold {
     /// No contact: the shapes are farther apart than the margin.
-    pub const EMPTY: Self = Self {
-        normal: Vector2::ZERO,
-        points: [ManifoldPoint::ZERO; MAX_MANIFOLD_POINTS],
-        count: 0,
-    };
+    pub const EMPTY: Self =
+        Self { normal: Vector2::ZERO, points: [ManifoldPoint::ZERO; MAX_MANIFOLD_POINTS], count: 0 };
 
     /// The valid contact points (`count` of them).
     #[inline]
@@ -97,18 +94,9 @@ impl Manifold {
             let anchor_frame = frame.q.rotate(lp.point);
             let point = frame.p + anchor_frame;
             let anchor_other = point - other_position;
-            let (anchor_a, anchor_b) = if frame_is_b {
-                (anchor_other, anchor_frame)
-            } else {
-                (anchor_frame, anchor_other)
-            };
-            *slot = ManifoldPoint {
-                point,
-                anchor_a,
-                anchor_b,
-                separation: lp.separation,
-                id: lp.id,
-            };
+            let (anchor_a, anchor_b) =
+                if frame_is_b { (anchor_other, anchor_frame) } else { (anchor_frame, anchor_other) };
+            *slot = ManifoldPoint { point, anchor_a, anchor_b, separation: lp.separation, id: lp.id };
         }
         m.count = local.len().min(MAX_MANIFOLD_POINTS);
         m
@@ -164,25 +152,17 @@ mod tests {
         let (n, len) = direction_and_length(tiny).unwrap_or_default();
         assert!(unit_error(n) < Scalar::lit("1e-9"), "{n:?}");
         // |(1, 2)| · 2^-32 = 2.236 · 2^-32: 2 ulps after rounding.
-        assert!(
-            len >= scalar::EPSILON && len <= Scalar::from_bits(3),
-            "{len:?}"
-        );
-        let (n, len) =
-            direction_and_length(Vector2::new(ZERO, -scalar::EPSILON)).unwrap_or_default();
+        assert!(len >= scalar::EPSILON && len <= Scalar::from_bits(3), "{len:?}");
+        let (n, len) = direction_and_length(Vector2::new(ZERO, -scalar::EPSILON)).unwrap_or_default();
         assert_eq!((n, len), (-Vector2::Y, scalar::EPSILON));
     }
 
     #[test]
     fn direction_of_large_and_ordinary_vectors() {
         let (n, len) = direction_and_length(Vector2::from_int(3, 4)).unwrap_or_default();
-        assert!(
-            (n - Vector2::new(Scalar::lit("0.6"), Scalar::lit("0.8"))).length()
-                < Scalar::lit("1e-9")
-        );
+        assert!((n - Vector2::new(Scalar::lit("0.6"), Scalar::lit("0.8"))).length() < Scalar::lit("1e-9"));
         assert_eq!(len, from_int(5));
-        let (n, len) =
-            direction_and_length(Vector2::from_int(-2_000_000_000, 0)).unwrap_or_default();
+        let (n, len) = direction_and_length(Vector2::from_int(-2_000_000_000, 0)).unwrap_or_default();
         assert_eq!(n, -Vector2::X);
         assert_eq!(len, from_int(2_000_000_000));
         let extreme = Vector2::new(Scalar::MIN, Scalar::MIN);
@@ -196,11 +176,7 @@ mod tests {
     fn from_local_swaps_anchors_and_flips_the_normal_for_frame_b() {
         let frame = Transform::new(Vector2::from_int(10, 0), Rot { c: ZERO, s: ONE });
         let other = Vector2::from_int(10, 3);
-        let lp = LocalPoint {
-            point: Vector2::from_int(1, 0),
-            separation: from_int(-1),
-            id: 7,
-        };
+        let lp = LocalPoint { point: Vector2::from_int(1, 0), separation: from_int(-1), id: 7 };
         let a = Manifold::from_local(frame, other, Vector2::X, &[lp], false);
         assert_eq!(a.normal, Vector2::Y);
         assert_eq!(a.points().len(), 1);
@@ -210,10 +186,7 @@ mod tests {
         assert_eq!(p.anchor_b, Vector2::from_int(0, -2));
         let b = Manifold::from_local(frame, other, Vector2::X, &[lp], true);
         assert_eq!(b.normal, -Vector2::Y);
-        assert_eq!(
-            (b.points[0].anchor_a, b.points[0].anchor_b),
-            (p.anchor_b, p.anchor_a)
-        );
+        assert_eq!((b.points[0].anchor_a, b.points[0].anchor_b), (p.anchor_b, p.anchor_a));
         assert_eq!(Manifold::EMPTY.points().len(), 0);
     }
 }

@@ -50,11 +50,9 @@ pub fn collide_polygon_circle(
     if face_separation > radius_b.saturating_add(margin) {
         return Manifold::EMPTY;
     }
-    let (Some(&v1), Some(&v2), Some(&face_normal)) = (
-        vertices.get(edge),
-        vertices.get(next_index(edge, vertices.len())),
-        normals.get(edge),
-    ) else {
+    let (Some(&v1), Some(&v2), Some(&face_normal)) =
+        (vertices.get(edge), vertices.get(next_index(edge, vertices.len())), normals.get(edge))
+    else {
         return Manifold::EMPTY;
     };
 
@@ -77,21 +75,13 @@ pub fn collide_polygon_circle(
         match corner.and_then(|v| direction_and_length(centre - v).map(|(n, d)| (n, v, d))) {
             Some(found) => found,
             // Face region, or the centre inside: project the centre onto the face.
-            None => (
-                face_normal,
-                centre - face_normal * face_separation,
-                face_separation,
-            ),
+            None => (face_normal, centre - face_normal * face_separation, face_separation),
         };
     let separation = distance.saturating_sub(radius_b);
     if separation > margin {
         return Manifold::EMPTY;
     }
-    let local = LocalPoint {
-        point: surface_a + normal * half(separation),
-        separation,
-        id: 0,
-    };
+    let local = LocalPoint { point: surface_a + normal * half(separation), separation, id: 0 };
     Manifold::from_local(xf_a, xf_b.p, normal, &[local], false)
 }
 
@@ -109,13 +99,7 @@ mod tests {
 
     #[test]
     fn circle_resting_into_the_top_face() {
-        let m = collide_polygon_circle(
-            &box_4x2(),
-            at("0", "0"),
-            Scalar::lit("0.5"),
-            at("1", "1.25"),
-            ZERO,
-        );
+        let m = collide_polygon_circle(&box_4x2(), at("0", "0"), Scalar::lit("0.5"), at("1", "1.25"), ZERO);
         assert_eq!(m.count, 1);
         assert_eq!(m.normal, Vector2::Y);
         let p = m.points[0];
@@ -128,37 +112,13 @@ mod tests {
     #[test]
     fn circle_against_a_corner_uses_the_vertex_direction() {
         // Corner (2, 1); centre at (2.3, 1.4): distance 0.5, radius 0.6.
-        let m = collide_polygon_circle(
-            &box_4x2(),
-            at("0", "0"),
-            Scalar::lit("0.6"),
-            at("2.3", "1.4"),
-            ZERO,
-        );
+        let m = collide_polygon_circle(&box_4x2(), at("0", "0"), Scalar::lit("0.6"), at("2.3", "1.4"), ZERO);
         assert_eq!(m.count, 1);
-        assert!(
-            close(
-                m.normal,
-                Vector2::new(Scalar::lit("0.6"), Scalar::lit("0.8"))
-            ),
-            "{:?}",
-            m.normal
-        );
+        assert!(close(m.normal, Vector2::new(Scalar::lit("0.6"), Scalar::lit("0.8"))), "{:?}", m.normal);
         let p = m.points[0];
-        assert!(
-            near(p.separation, Scalar::lit("-0.1")),
-            "{:?}",
-            p.separation
-        );
+        assert!(near(p.separation, Scalar::lit("-0.1")), "{:?}", p.separation);
         // Corner + normal · (−0.05).
-        assert!(
-            close(
-                p.point,
-                Vector2::new(Scalar::lit("1.97"), Scalar::lit("0.96"))
-            ),
-            "{:?}",
-            p.point
-        );
+        assert!(close(p.point, Vector2::new(Scalar::lit("1.97"), Scalar::lit("0.96"))), "{:?}", p.point);
     }
 
     #[test]
@@ -166,62 +126,35 @@ mod tests {
         // Both faces are 0.3 away, the corner 0.3·√2 ≈ 0.424.
         let xf_b = at("2.3", "1.3");
         let r = Scalar::lit("0.1");
-        assert_eq!(
-            collide_polygon_circle(&box_4x2(), at("0", "0"), r, xf_b, Scalar::lit("0.3")).count,
-            0
-        );
+        assert_eq!(collide_polygon_circle(&box_4x2(), at("0", "0"), r, xf_b, Scalar::lit("0.3")).count, 0);
         let m = collide_polygon_circle(&box_4x2(), at("0", "0"), r, xf_b, Scalar::lit("0.33"));
         assert_eq!(m.count, 1);
-        assert!(near(
-            m.points[0].separation,
-            Scalar::lit("0.324264068711928")
-        ));
+        assert!(near(m.points[0].separation, Scalar::lit("0.324264068711928")));
     }
 
     #[test]
     fn centre_inside_pushes_out_through_the_nearest_face() {
         // Inside, 0.25 from the right face (x = 2) and 0.75 from the top.
-        let m = collide_polygon_circle(
-            &box_4x2(),
-            at("0", "0"),
-            Scalar::lit("0.5"),
-            at("1.75", "0.25"),
-            ZERO,
-        );
+        let m =
+            collide_polygon_circle(&box_4x2(), at("0", "0"), Scalar::lit("0.5"), at("1.75", "0.25"), ZERO);
         assert_eq!(m.count, 1);
         assert_eq!(m.normal, Vector2::X);
         assert_eq!(m.points[0].separation, Scalar::lit("-0.75"));
-        assert_eq!(
-            m.points[0].point,
-            Vector2::new(Scalar::lit("1.625"), Scalar::lit("0.25"))
-        );
+        assert_eq!(m.points[0].point, Vector2::new(Scalar::lit("1.625"), Scalar::lit("0.25")));
     }
 
     #[test]
     fn centre_exactly_at_the_polygon_centre_picks_the_first_least_deep_face() {
         // Square: every face is 1 m away; the tie goes to edge 0 (normal −y).
-        let square =
-            PolygonPath::rectangle(from_int(2), from_int(2)).unwrap_or_else(|_| unreachable!());
-        let m = collide_polygon_circle(
-            &square,
-            at("3", "3"),
-            Scalar::lit("0.5"),
-            at("3", "3"),
-            ZERO,
-        );
+        let square = PolygonPath::rectangle(from_int(2), from_int(2)).unwrap_or_else(|_| unreachable!());
+        let m = collide_polygon_circle(&square, at("3", "3"), Scalar::lit("0.5"), at("3", "3"), ZERO);
         assert_eq!(m.normal, -Vector2::Y);
         assert_eq!(m.points[0].separation, Scalar::lit("-1.5"));
     }
 
     #[test]
     fn centre_exactly_on_a_corner() {
-        let m = collide_polygon_circle(
-            &box_4x2(),
-            at("0", "0"),
-            Scalar::lit("0.5"),
-            at("2", "1"),
-            ZERO,
-        );
+        let m = collide_polygon_circle(&box_4x2(), at("0", "0"), Scalar::lit("0.5"), at("2", "1"), ZERO);
         assert_eq!(m.count, 1);
         // Separation 0 on two faces: the first (edge 1, normal +x) is chosen.
         assert_eq!(m.normal, Vector2::X);
@@ -232,23 +165,11 @@ mod tests {
     fn rotated_polygon_results_come_back_in_world_space() {
         // The box turned 90°: its long side is vertical, x half-extent 1.
         let xf_a = Transform::new(Vector2::from_int(10, 20), Rot { c: ZERO, s: ONE });
-        let m = collide_polygon_circle(
-            &box_4x2(),
-            xf_a,
-            Scalar::lit("0.5"),
-            at("11.25", "21"),
-            ZERO,
-        );
+        let m = collide_polygon_circle(&box_4x2(), xf_a, Scalar::lit("0.5"), at("11.25", "21"), ZERO);
         assert_eq!(m.count, 1);
         assert!(close(m.normal, Vector2::X));
         assert_eq!(m.points[0].separation, Scalar::lit("-0.25"));
-        assert!(close(
-            m.points[0].point,
-            Vector2::new(Scalar::lit("10.875"), from_int(21))
-        ));
-        assert!(close(
-            m.points[0].anchor_a,
-            Vector2::new(Scalar::lit("0.875"), ONE)
-        ));
+        assert!(close(m.points[0].point, Vector2::new(Scalar::lit("10.875"), from_int(21))));
+        assert!(close(m.points[0].anchor_a, Vector2::new(Scalar::lit("0.875"), ONE)));
     }
 }

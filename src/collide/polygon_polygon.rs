@@ -161,11 +161,7 @@ fn max_separation(poly: &PolygonPath, other: &[Vector2]) -> Option<(usize, Scala
     }
     let mut best: Option<(usize, Scalar)> = None;
     for (i, (v, n)) in poly.vertices().iter().zip(poly.normals()).enumerate() {
-        let deepest = other
-            .iter()
-            .map(|w| n.dot(*w - *v))
-            .min()
-            .unwrap_or(Scalar::MAX);
+        let deepest = other.iter().map(|w| n.dot(*w - *v)).min().unwrap_or(Scalar::MAX);
         if best.is_none_or(|(_, b)| deepest > b) {
             best = Some((i, deepest));
         }
@@ -240,11 +236,7 @@ impl Reference<'_> {
         let base_id = self.id_flag | ((self.edge as u16 & 0xF) << 8) | ((k1 as u16 & 0xF) << 4);
         let face_point = |p: Vector2, id: u16| {
             let separation = n.dot(p - v1);
-            LocalPoint {
-                point: p - n * half(separation),
-                separation,
-                id,
-            }
+            LocalPoint { point: p - n * half(separation), separation, id }
         };
         if outside_low || outside_high {
             // The incident edge lies wholly beside the strip: not proven
@@ -256,11 +248,7 @@ impl Reference<'_> {
                 return None;
             }
             let (end2, end1) = (face_point(i2, base_id), face_point(i1, base_id | 1));
-            let deeper = if end2.separation <= end1.separation {
-                end2
-            } else {
-                end1
-            };
+            let deeper = if end2.separation <= end1.separation { end2 } else { end1 };
             return single(n, deeper, margin, out);
         }
         let p1 = clip_end(i1, i2, tau1, tau2, length);
@@ -309,15 +297,8 @@ impl Reference<'_> {
                     continue;
                 }
                 let (direction, distance) = direction_and_length(d)?;
-                let id = self.id_flag
-                    | ID_VERTEX_PAIR
-                    | ((ia as u16 & 0xF) << 8)
-                    | ((ib as u16 & 0xF) << 4);
-                let point = LocalPoint {
-                    point: a + direction * half(distance),
-                    separation: distance,
-                    id,
-                };
+                let id = self.id_flag | ID_VERTEX_PAIR | ((ia as u16 & 0xF) << 8) | ((ib as u16 & 0xF) << 4);
+                let point = LocalPoint { point: a + direction * half(distance), separation: distance, id };
                 return Some((direction, point));
             }
         }
@@ -352,11 +333,7 @@ fn clip_end(p: Vector2, q: Vector2, tau_p: Scalar, tau_q: Scalar, length: Scalar
     } else {
         return p;
     };
-    let ratio = crate::math::scalar::clamp(
-        crate::math::scalar::div(over, span),
-        Scalar::ZERO,
-        Scalar::ONE,
-    );
+    let ratio = crate::math::scalar::clamp(crate::math::scalar::div(over, span), Scalar::ZERO, Scalar::ONE);
     p + (q - p) * ratio
 }
 
@@ -386,20 +363,11 @@ mod tests {
     #[test]
     fn box_resting_on_a_box_gives_two_points_with_the_overlap() {
         // 4×2 ground, top face at y = 1; a 2×2 box whose bottom is at y = 0.9.
-        let m = collide_polygons(
-            &rect(4, 2),
-            at("0", "0"),
-            &rect(2, 2),
-            at("0.5", "1.9"),
-            ZERO,
-        );
+        let m = collide_polygons(&rect(4, 2), at("0", "0"), &rect(2, 2), at("0.5", "1.9"), ZERO);
         assert_eq!(m.count, 2);
         assert_eq!(m.normal, Vector2::Y);
         let [p, q] = m.points;
-        assert_eq!(
-            (p.separation, q.separation),
-            (Scalar::lit("-0.1"), Scalar::lit("-0.1"))
-        );
+        assert_eq!((p.separation, q.separation), (Scalar::lit("-0.1"), Scalar::lit("-0.1")));
         // A's edge 2 (top) is the reference, B's edge 0 (bottom) the incident edge.
         assert_eq!((p.id, q.id), (0x200, 0x201));
         assert_eq!(p.point, v("1.5", "0.95"));
@@ -409,13 +377,7 @@ mod tests {
 
     #[test]
     fn overhanging_box_is_clipped_to_the_reference_face_and_keeps_its_ids() {
-        let m = collide_polygons(
-            &rect(4, 2),
-            at("0", "0"),
-            &rect(2, 2),
-            at("2.5", "1.9"),
-            ZERO,
-        );
+        let m = collide_polygons(&rect(4, 2), at("0", "0"), &rect(2, 2), at("2.5", "1.9"), ZERO);
         assert_eq!(m.count, 2);
         assert_eq!(m.normal, Vector2::Y);
         assert_eq!(m.points[0].point, v("2", "0.95"));
@@ -427,10 +389,7 @@ mod tests {
     fn speculative_points_respect_the_margin() {
         // Gap 0.1 between the faces.
         let (a, b) = (at("0", "0"), at("0.5", "2.1"));
-        assert_eq!(
-            collide_polygons(&rect(4, 2), a, &rect(2, 2), b, Scalar::lit("0.05")).count,
-            0
-        );
+        assert_eq!(collide_polygons(&rect(4, 2), a, &rect(2, 2), b, Scalar::lit("0.05")).count, 0);
         let m = collide_polygons(&rect(4, 2), a, &rect(2, 2), b, Scalar::lit("0.1"));
         assert_eq!(m.count, 2);
         assert_eq!(m.points[0].separation, Scalar::lit("0.1"));
@@ -450,11 +409,7 @@ mod tests {
         assert_eq!(m.count, 1);
         assert_eq!(m.normal, Vector2::Y);
         let p = m.points[0];
-        assert!(
-            near(p.separation, Scalar::lit("-0.1")),
-            "{:?}",
-            p.separation
-        );
+        assert!(near(p.separation, Scalar::lit("-0.1")), "{:?}", p.separation);
         assert!(close(p.point, v("-0.2", "0.95")), "{:?}", p.point);
         // The corner is the first vertex of B's edge 0: end 1.
         assert_eq!(p.id, 0x201);
@@ -524,20 +479,13 @@ mod tests {
     fn separated_corners_use_the_vertex_to_vertex_distance() {
         // Corners (1, 1) and (1.1, 1.1): both face axes say 0.1, the true gap is 0.1·√2.
         let (a, b) = (at("0", "0"), at("2.1", "2.1"));
-        assert_eq!(
-            collide_polygons(&rect(2, 2), a, &rect(2, 2), b, Scalar::lit("0.1")).count,
-            0
-        );
+        assert_eq!(collide_polygons(&rect(2, 2), a, &rect(2, 2), b, Scalar::lit("0.1")).count, 0);
         let m = collide_polygons(&rect(2, 2), a, &rect(2, 2), b, Scalar::lit("0.2"));
         assert_eq!(m.count, 1);
         let diagonal = Vector2::new(Scalar::SQRT_2, Scalar::SQRT_2) * Scalar::lit("0.5");
         assert!(close(m.normal, diagonal), "{:?}", m.normal);
         let p = m.points[0];
-        assert!(
-            near(p.separation, Scalar::lit("0.141421356237")),
-            "{:?}",
-            p.separation
-        );
+        assert!(near(p.separation, Scalar::lit("0.141421356237")), "{:?}", p.separation);
         assert!(close(p.point, v("1.05", "1.05")));
         // A's vertex 2 and B's vertex 0.
         assert_eq!(p.id, ID_VERTEX_PAIR | 0x200);
@@ -566,34 +514,21 @@ mod tests {
         let diagonal = Vector2::new(Scalar::FRAC_1_SQRT_2, Scalar::FRAC_1_SQRT_2);
         assert!(close(m.normal, diagonal), "{:?}", m.normal);
         for p in m.points() {
-            assert!(
-                near(p.separation, Scalar::lit("-0.1")),
-                "{:?}",
-                p.separation
-            );
+            assert!(near(p.separation, Scalar::lit("-0.1")), "{:?}", p.separation);
         }
     }
 
     #[test]
     fn far_from_the_origin_gives_the_same_relative_answer() {
         let far = Vector2::from_int(1_000_000, -1_000_000);
-        let near_origin = collide_polygons(
-            &rect(4, 2),
-            at("0", "0"),
-            &rect(2, 2),
-            at("0.5", "1.9"),
-            ZERO,
-        );
+        let near_origin = collide_polygons(&rect(4, 2), at("0", "0"), &rect(2, 2), at("0.5", "1.9"), ZERO);
         let xf_a = Transform::new(far, Rot::IDENTITY);
         let xf_b = Transform::new(far + v("0.5", "1.9"), Rot::IDENTITY);
         let far_away = collide_polygons(&rect(4, 2), xf_a, &rect(2, 2), xf_b, ZERO);
         assert_eq!(far_away.normal, near_origin.normal);
         for (p, q) in far_away.points().iter().zip(near_origin.points()) {
             assert_eq!(p.point, q.point + far);
-            assert_eq!(
-                (p.anchor_a, p.anchor_b, p.separation),
-                (q.anchor_a, q.anchor_b, q.separation)
-            );
+            assert_eq!((p.anchor_a, p.anchor_b, p.separation), (q.anchor_a, q.anchor_b, q.separation));
         }
     }
 
@@ -627,13 +562,7 @@ mod tests {
     fn empty_polygons_give_no_contact() {
         let mut empty = rect(1, 1);
         empty.count = 0;
-        assert_eq!(
-            collide_polygons(&empty, at("0", "0"), &rect(1, 1), at("0", "0"), ONE),
-            Manifold::EMPTY
-        );
-        assert_eq!(
-            collide_polygons(&rect(1, 1), at("0", "0"), &empty, at("0", "0"), ONE),
-            Manifold::EMPTY
-        );
+        assert_eq!(collide_polygons(&empty, at("0", "0"), &rect(1, 1), at("0", "0"), ONE), Manifold::EMPTY);
+        assert_eq!(collide_polygons(&rect(1, 1), at("0", "0"), &empty, at("0", "0"), ONE), Manifold::EMPTY);
     }
 }

@@ -18,10 +18,7 @@ impl GravityForceGenerator {
     /// Gravity on every dynamic body.
     #[must_use]
     pub fn new(gravity: Vector2) -> Self {
-        Self {
-            gravity,
-            targets: Targets::All,
-        }
+        Self { gravity, targets: Targets::All }
     }
 
     /// The same generator acting only on `targets`.

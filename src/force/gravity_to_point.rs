@@ -21,11 +21,7 @@ impl GravityToPointForceGenerator {
     /// Attraction of every dynamic body towards `point`.
     #[must_use]
     pub fn new(point: Vector2, acceleration: Scalar) -> Self {
-        Self {
-            point,
-            acceleration,
-            targets: Targets::All,
-        }
+        Self { point, acceleration, targets: Targets::All }
     }
 
     /// The same generator acting only on `targets`.

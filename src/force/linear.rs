@@ -18,10 +18,7 @@ impl LinearForceGenerator {
     /// A force on every dynamic body.
     #[must_use]
     pub fn new(force: Vector2) -> Self {
-        Self {
-            force,
-            targets: Targets::All,
-        }
+        Self { force, targets: Targets::All }
     }
 
     /// The same generator acting only on `targets`.

@@ -63,9 +63,7 @@ impl Targets {
     pub fn bodies(handles: &[BodyHandle]) -> Result<Self, crate::Error> {
         heapless::Vec::from_slice(handles)
             .map(Self::Bodies)
-            .map_err(|_| crate::Error::CapacityFull {
-                what: "generator target",
-            })
+            .map_err(|_| crate::Error::CapacityFull { what: "generator target" })
     }
 
     /// True when the body is targeted.

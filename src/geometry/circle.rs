@@ -24,9 +24,7 @@ const PI_Q64: u128 = 0x3_243F_6A88_85A3_08D3;
 /// The radius as raw bits (units of 2^-32 m), once checked.
 fn radius_bits(radius: Scalar) -> Result<u128, Error> {
     if radius <= ZERO || radius > MAX_CIRCLE_RADIUS {
-        return Err(Error::OutOfRange {
-            what: "circle radius",
-        });
+        return Err(Error::OutOfRange { what: "circle radius" });
     }
     Ok(radius.to_bits().unsigned_abs().into())
 }
@@ -69,14 +67,10 @@ pub fn circle_unit_inertia(radius: Scalar) -> Result<Scalar, Error> {
 
 /// The error for a result outside the `Scalar` range (unreachable within
 /// [`MAX_CIRCLE_RADIUS`]).
-const TOO_LARGE: Error = Error::OutOfRange {
-    what: "circle radius",
-};
+const TOO_LARGE: Error = Error::OutOfRange { what: "circle radius" };
 
 /// A rounded quotient in units of 2^-32 as a `Scalar`.
 fn to_scalar(bits: Option<u128>) -> Result<Scalar, Error> {
     let bits = bits.ok_or(TOO_LARGE)?;
-    i64::try_from(bits)
-        .map(Scalar::from_bits)
-        .map_err(|_| TOO_LARGE)
+    i64::try_from(bits).map(Scalar::from_bits).map_err(|_| TOO_LARGE)
 }

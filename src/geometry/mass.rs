@@ -53,12 +53,7 @@ pub struct MassData {
 impl MassData {
     /// The mass data of a static (or kinematic) body: everything 0, so impulses
     /// do not move it.
-    pub const STATIC: Self = Self {
-        mass: ZERO,
-        inv_mass: ZERO,
-        inertia: ZERO,
-        inv_inertia: ZERO,
-    };
+    pub const STATIC: Self = Self { mass: ZERO, inv_mass: ZERO, inertia: ZERO, inv_inertia: ZERO };
 
     /// Mass data of a shape of `area` (m²) and `unit_inertia` (kg·m² at density
     /// 1 kg/m², e.g. [`PolygonPath::unit_inertia`](super::PolygonPath::unit_inertia)
@@ -75,11 +70,7 @@ impl MassData {
     /// * `"inertia"` when `unit_inertia ≤ 0`, or the inertia is outside
     ///   [[`MIN_INERTIA`], [`MAX_INERTIA`]];
     /// * `"mass"` when the mass is outside [[`MIN_MASS`], [`MAX_MASS`]].
-    pub fn from_density(
-        density: Scalar,
-        area: Scalar,
-        unit_inertia: Scalar,
-    ) -> Result<Self, Error> {
+    pub fn from_density(density: Scalar, area: Scalar, unit_inertia: Scalar) -> Result<Self, Error> {
         if density <= ZERO {
             return Err(out_of_range("density"));
         }
@@ -87,8 +78,7 @@ impl MassData {
         let mass = mul_div_round(density, area, scalar::ONE)
             .filter(|m| (MIN_MASS..=MAX_MASS).contains(m))
             .ok_or(out_of_range("mass"))?;
-        let inertia =
-            mul_div_round(density, unit_inertia, scalar::ONE).ok_or(out_of_range("inertia"))?;
+        let inertia = mul_div_round(density, unit_inertia, scalar::ONE).ok_or(out_of_range("inertia"))?;
         Self::checked(mass, inertia)
     }
 
@@ -128,12 +118,7 @@ impl MassData {
         if !(MIN_INERTIA..=MAX_INERTIA).contains(&inertia) {
             return Err(out_of_range("inertia"));
         }
-        Ok(Self {
-            mass,
-            inv_mass: scalar::recip(mass),
-            inertia,
-            inv_inertia: scalar::recip(inertia),
-        })
+        Ok(Self { mass, inv_mass: scalar::recip(mass), inertia, inv_inertia: scalar::recip(inertia) })
     }
 }
 
@@ -162,9 +147,6 @@ fn mul_div_round(a: Scalar, b: Scalar, c: Scalar) -> Option<Scalar> {
         return None;
     }
     // (2·num + den) / (2·den), the raw units of num / den being 2^-32.
-    let q = num
-        .checked_mul(2)?
-        .checked_add(den)?
-        .checked_div(den.checked_mul(2)?)?;
+    let q = num.checked_mul(2)?.checked_add(den)?.checked_div(den.checked_mul(2)?)?;
     i64::try_from(q).ok().map(Scalar::from_bits)
 }

@@ -47,15 +47,10 @@ mod wide {
             let p10 = a1.wrapping_mul(b0);
             let p11 = a1.wrapping_mul(b1);
             // The middle column sums three values below 2^64: below 2^66.
-            let mid = (p00 >> 64)
-                .wrapping_add(p01 & LOW64)
-                .wrapping_add(p10 & LOW64);
+            let mid = (p00 >> 64).wrapping_add(p01 & LOW64).wrapping_add(p10 & LOW64);
             let lo = (p00 & LOW64) | ((mid & LOW64) << 64);
             // The full product is below 2^256, so the high half cannot wrap.
-            let hi = p11
-                .wrapping_add(p01 >> 64)
-                .wrapping_add(p10 >> 64)
-                .wrapping_add(mid >> 64);
+            let hi = p11.wrapping_add(p01 >> 64).wrapping_add(p10 >> 64).wrapping_add(mid >> 64);
             Self { hi, lo }
         }
 

@@ -62,9 +62,7 @@ pub const MIN_POLYGON_THICKNESS: Scalar = Scalar::from_bits(1 << 12);
 const MAX_BOX_SIDE_BITS: i128 = 1 << 41;
 
 /// The error for a polygon that is too large (or too far spread).
-const TOO_LARGE: Error = Error::OutOfRange {
-    what: "polygon size",
-};
+const TOO_LARGE: Error = Error::OutOfRange { what: "polygon size" };
 
 /// A point as the raw bits of its coordinates (units of 2^-32 m).
 type Pt = (i64, i64);
@@ -146,10 +144,7 @@ impl PolygonPath {
             return Err(Error::DegeneratePolygon);
         }
         if count > MAX_POLYGON_VERTICES {
-            return Err(Error::TooManyVertices {
-                count,
-                max: MAX_POLYGON_VERTICES,
-            });
+            return Err(Error::TooManyVertices { count, max: MAX_POLYGON_VERTICES });
         }
         let hull = hull.get(..count).ok_or(Error::DegeneratePolygon)?;
 
@@ -170,9 +165,8 @@ impl PolygonPath {
 
         // "Area ≈ 0": too small, or too thin for its length (see the constants).
         let min_area2 = i128::from(MIN_POLYGON_AREA.to_bits()).saturating_mul(1 << 33);
-        let min_thin2 = i128::from(MIN_POLYGON_THICKNESS.to_bits())
-            .saturating_mul(2)
-            .saturating_mul(longest_side);
+        let min_thin2 =
+            i128::from(MIN_POLYGON_THICKNESS.to_bits()).saturating_mul(2).saturating_mul(longest_side);
         if area2 < min_area2 || area2 < min_thin2 {
             return Err(Error::DegeneratePolygon);
         }
@@ -181,10 +175,8 @@ impl PolygonPath {
         // bounding box of the points, so adding it to v0 cannot overflow.
         let den = area2.saturating_mul(3);
         let offset = (to_i64(div_round(cx, den))?, to_i64(div_round(cy, den))?);
-        let centroid = (
-            v0.0.checked_add(offset.0).ok_or(TOO_LARGE)?,
-            v0.1.checked_add(offset.1).ok_or(TOO_LARGE)?,
-        );
+        let centroid =
+            (v0.0.checked_add(offset.0).ok_or(TOO_LARGE)?, v0.1.checked_add(offset.1).ok_or(TOO_LARGE)?);
 
         // Shift to the centroid (exact) and check the size limit.
         let max_r2 = i128::from(MAX_POLYGON_RADIUS.to_bits()).saturating_pow(2);
@@ -213,9 +205,7 @@ impl PolygonPath {
             let next = local.get(i.saturating_add(1)).or(local.first());
             let (a, b) = (widen(a), widen(*next.unwrap_or(&a)));
             let d = cross(a, b);
-            let s = dot(a, a)
-                .saturating_add(dot(a, b))
-                .saturating_add(dot(b, b));
+            let s = dot(a, a).saturating_add(dot(a, b)).saturating_add(dot(b, b));
             let term = U256::mul(d.unsigned_abs(), s.unsigned_abs());
             if d >= 0 {
                 pos = pos.add(term);
@@ -268,27 +258,18 @@ impl PolygonPath {
     /// `{ what: "rectangle center" }` when a corner would leave the `Scalar` range.
     pub fn rectangle_at(width: Scalar, height: Scalar, center: Vector2) -> Result<Self, Error> {
         if width <= ZERO || height <= ZERO {
-            return Err(Error::OutOfRange {
-                what: "rectangle side",
-            });
+            return Err(Error::OutOfRange { what: "rectangle side" });
         }
         // Halving the raw bits (rounding down) keeps the corners symmetric and exact.
         let (hx, hy) = (width.to_bits() >> 1, height.to_bits() >> 1);
         let c = bits(center);
         let corner = |sx: i64, sy: i64| -> Result<Vector2, Error> {
-            let off = Error::OutOfRange {
-                what: "rectangle center",
-            };
+            let off = Error::OutOfRange { what: "rectangle center" };
             let x = c.0.checked_add(sx.saturating_mul(hx)).ok_or(off)?;
             let y = c.1.checked_add(sy.saturating_mul(hy)).ok_or(off)?;
             Ok(Vector2::new(Scalar::from_bits(x), Scalar::from_bits(y)))
         };
-        Self::new(&[
-            corner(-1, -1)?,
-            corner(1, -1)?,
-            corner(1, 1)?,
-            corner(-1, 1)?,
-        ])
+        Self::new(&[corner(-1, -1)?, corner(1, -1)?, corner(1, 1)?, corner(-1, 1)?])
     }
 
     /// The hull's vertices, counter-clockwise, relative to the centroid (m).
@@ -409,22 +390,17 @@ fn widen(p: Pt) -> Diff {
 
 /// `a − b`, exact (two `i64` differ by less than 2^64).
 fn diff(a: Pt, b: Pt) -> Diff {
-    (
-        i128::from(a.0).saturating_sub(i128::from(b.0)),
-        i128::from(a.1).saturating_sub(i128::from(b.1)),
-    )
+    (i128::from(a.0).saturating_sub(i128::from(b.0)), i128::from(a.1).saturating_sub(i128::from(b.1)))
 }
 
 /// `a × b`, exact for components below 2^62 (callers keep them below 2^42).
 fn cross(a: Diff, b: Diff) -> i128 {
-    a.0.saturating_mul(b.1)
-        .saturating_sub(a.1.saturating_mul(b.0))
+    a.0.saturating_mul(b.1).saturating_sub(a.1.saturating_mul(b.0))
 }
 
 /// `a · b`, exact for components below 2^62 (callers keep them below 2^42).
 fn dot(a: Diff, b: Diff) -> i128 {
-    a.0.saturating_mul(b.0)
-        .saturating_add(a.1.saturating_mul(b.1))
+    a.0.saturating_mul(b.0).saturating_add(a.1.saturating_mul(b.1))
 }
 
 /// `num / den` rounded to nearest, ties away from zero, so mirrored shapes get
@@ -435,10 +411,7 @@ fn div_round(num: i128, den: i128) -> i128 {
     }
     let twice = num.unsigned_abs().saturating_mul(2);
     let den = den.unsigned_abs();
-    let q = twice
-        .saturating_add(den)
-        .checked_div(den.saturating_mul(2))
-        .unwrap_or(0);
+    let q = twice.saturating_add(den).checked_div(den.saturating_mul(2)).unwrap_or(0);
     let q = i128::try_from(q).unwrap_or(i128::MAX);
     if num < 0 {
         q.saturating_neg()
@@ -451,11 +424,7 @@ fn div_round(num: i128, den: i128) -> i128 {
 fn ceil_sqrt(x: i128) -> i128 {
     let Ok(x) = u128::try_from(x) else { return 0 };
     let r = x.isqrt();
-    let r = if r.saturating_mul(r) < x {
-        r.saturating_add(1)
-    } else {
-        r
-    };
+    let r = if r.saturating_mul(r) < x { r.saturating_add(1) } else { r };
     i128::try_from(r).unwrap_or(i128::MAX)
 }
 
@@ -478,18 +447,9 @@ fn outward_normal(d: Diff) -> Vector2 {
     }
     let bit_len = 128u32.saturating_sub(m.leading_zeros());
     let shift = 61u32.saturating_sub(bit_len);
-    let (sx, sy) = (
-        nx.checked_shl(shift).unwrap_or(nx),
-        ny.checked_shl(shift).unwrap_or(ny),
-    );
-    let len2 = sx
-        .unsigned_abs()
-        .saturating_pow(2)
-        .saturating_add(sy.unsigned_abs().saturating_pow(2));
+    let (sx, sy) = (nx.checked_shl(shift).unwrap_or(nx), ny.checked_shl(shift).unwrap_or(ny));
+    let len2 = sx.unsigned_abs().saturating_pow(2).saturating_add(sy.unsigned_abs().saturating_pow(2));
     let len = i128::try_from(len2.isqrt()).unwrap_or(i128::MAX);
     let one = 1i128 << 32;
-    from_bits((
-        div_round(sx.saturating_mul(one), len),
-        div_round(sy.saturating_mul(one), len),
-    ))
+    from_bits((div_round(sx.saturating_mul(one), len), div_round(sy.saturating_mul(one), len)))
 }

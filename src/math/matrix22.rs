@@ -17,15 +17,9 @@ pub struct Matrix22 {
 
 impl Matrix22 {
     /// The zero matrix.
-    pub const ZERO: Self = Self {
-        col1: Vector2::ZERO,
-        col2: Vector2::ZERO,
-    };
+    pub const ZERO: Self = Self { col1: Vector2::ZERO, col2: Vector2::ZERO };
     /// The identity matrix.
-    pub const IDENTITY: Self = Self {
-        col1: Vector2::X,
-        col2: Vector2::Y,
-    };
+    pub const IDENTITY: Self = Self { col1: Vector2::X, col2: Vector2::Y };
 
     /// A matrix from its two columns.
     #[inline]
@@ -38,10 +32,7 @@ impl Matrix22 {
     #[inline]
     #[must_use]
     pub const fn new(a: Scalar, b: Scalar, c: Scalar, d: Scalar) -> Self {
-        Self {
-            col1: Vector2::new(a, c),
-            col2: Vector2::new(b, d),
-        }
+        Self { col1: Vector2::new(a, c), col2: Vector2::new(b, d) }
     }
 
     /// The transpose.
@@ -83,12 +74,8 @@ impl Matrix22 {
             return None;
         }
         let (a11, a12, a21, a22) = (self.col1.x, self.col2.x, self.col1.y, self.col2.y);
-        let x = a22
-            .saturating_mul(b.x)
-            .saturating_sub(a12.saturating_mul(b.y));
-        let y = a11
-            .saturating_mul(b.y)
-            .saturating_sub(a21.saturating_mul(b.x));
+        let x = a22.saturating_mul(b.x).saturating_sub(a12.saturating_mul(b.y));
+        let y = a11.saturating_mul(b.y).saturating_sub(a21.saturating_mul(b.x));
         Some(Vector2::new(scalar::div(x, det), scalar::div(y, det)))
     }
 }
@@ -129,10 +116,7 @@ mod tests {
         let p = m * inv;
         let err = (p.col1 - Vector2::X).length() + (p.col2 - Vector2::Y).length();
         assert!(err < Scalar::lit("0.00000001"), "{err}");
-        assert_eq!(
-            m.solve(Vector2::from_int(18, 14)),
-            Some(Vector2::from_int(1, 2))
-        );
+        assert_eq!(m.solve(Vector2::from_int(18, 14)), Some(Vector2::from_int(1, 2)));
     }
 
     #[test]
@@ -140,9 +124,6 @@ mod tests {
         let m = Matrix22::new(from_int(1), from_int(2), from_int(2), from_int(4));
         assert!(m.inverse().is_none());
         assert!(m.solve(Vector2::X).is_none());
-        assert_eq!(
-            m.transpose(),
-            Matrix22::new(from_int(1), from_int(2), from_int(2), from_int(4))
-        );
+        assert_eq!(m.transpose(), Matrix22::new(from_int(1), from_int(2), from_int(2), from_int(4)));
     }
 }

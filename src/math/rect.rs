@@ -18,10 +18,7 @@ impl Rect {
     #[inline]
     #[must_use]
     pub fn from_corners(a: Vector2, b: Vector2) -> Self {
-        Self {
-            min: a.min(b),
-            max: a.max(b),
-        }
+        Self { min: a.min(b), max: a.max(b) }
     }
 
     /// The rectangle with lower-left corner `origin`, `width` and `height`.
@@ -36,10 +33,7 @@ impl Rect {
     #[must_use]
     pub fn from_center(center: Vector2, half_extents: Vector2) -> Self {
         let h = half_extents.abs();
-        Self {
-            min: center - h,
-            max: center + h,
-        }
+        Self { min: center - h, max: center + h }
     }
 
     /// Width (`max.x − min.x`).
@@ -67,20 +61,14 @@ impl Rect {
     #[inline]
     #[must_use]
     pub fn union(self, o: Self) -> Self {
-        Self {
-            min: self.min.min(o.min),
-            max: self.max.max(o.max),
-        }
+        Self { min: self.min.min(o.min), max: self.max.max(o.max) }
     }
 
     /// True when the rectangles share at least one point (touching edges count).
     #[inline]
     #[must_use]
     pub fn overlaps(self, o: Self) -> bool {
-        self.min.x <= o.max.x
-            && o.min.x <= self.max.x
-            && self.min.y <= o.max.y
-            && o.min.y <= self.max.y
+        self.min.x <= o.max.x && o.min.x <= self.max.x && self.min.y <= o.max.y && o.min.y <= self.max.y
     }
 
     /// True when `p` lies inside or on the edge.
@@ -102,10 +90,7 @@ impl Rect {
     #[must_use]
     pub fn expand(self, margin: Scalar) -> Self {
         let m = Vector2::new(margin, margin);
-        let r = Self {
-            min: self.min - m,
-            max: self.max + m,
-        };
+        let r = Self { min: self.min - m, max: self.max + m };
         if r.min.x > r.max.x || r.min.y > r.max.y {
             let c = self.center();
             Self { min: c, max: c }
@@ -127,10 +112,7 @@ mod tests {
         let c = Rect::from_corners(Vector2::from_int(3, 3), Vector2::from_int(4, 4));
         assert!(a.overlaps(b) && b.overlaps(a), "touching edges overlap");
         assert!(!a.overlaps(c));
-        assert_eq!(
-            a.union(c),
-            Rect::from_corners(Vector2::ZERO, Vector2::from_int(4, 4))
-        );
+        assert_eq!(a.union(c), Rect::from_corners(Vector2::ZERO, Vector2::from_int(4, 4)));
         assert!(a.contains(Vector2::from_int(1, 2)) && !a.contains(Vector2::from_int(3, 1)));
         assert_eq!(a.expand(from_int(1)).min, Vector2::from_int(-1, -1));
         assert_eq!(

@@ -54,12 +54,8 @@ impl Rot {
     #[must_use]
     pub fn rotate(self, v: Vector2) -> Vector2 {
         Vector2::new(
-            self.c
-                .saturating_mul(v.x)
-                .saturating_sub(self.s.saturating_mul(v.y)),
-            self.s
-                .saturating_mul(v.x)
-                .saturating_add(self.c.saturating_mul(v.y)),
+            self.c.saturating_mul(v.x).saturating_sub(self.s.saturating_mul(v.y)),
+            self.s.saturating_mul(v.x).saturating_add(self.c.saturating_mul(v.y)),
         )
     }
 
@@ -68,12 +64,8 @@ impl Rot {
     #[must_use]
     pub fn inv_rotate(self, v: Vector2) -> Vector2 {
         Vector2::new(
-            self.c
-                .saturating_mul(v.x)
-                .saturating_add(self.s.saturating_mul(v.y)),
-            self.c
-                .saturating_mul(v.y)
-                .saturating_sub(self.s.saturating_mul(v.x)),
+            self.c.saturating_mul(v.x).saturating_add(self.s.saturating_mul(v.y)),
+            self.c.saturating_mul(v.y).saturating_sub(self.s.saturating_mul(v.x)),
         )
     }
 
@@ -82,14 +74,8 @@ impl Rot {
     #[must_use]
     pub fn compose(self, o: Self) -> Self {
         Self {
-            c: self
-                .c
-                .saturating_mul(o.c)
-                .saturating_sub(self.s.saturating_mul(o.s)),
-            s: self
-                .s
-                .saturating_mul(o.c)
-                .saturating_add(self.c.saturating_mul(o.s)),
+            c: self.c.saturating_mul(o.c).saturating_sub(self.s.saturating_mul(o.s)),
+            s: self.s.saturating_mul(o.c).saturating_add(self.c.saturating_mul(o.s)),
         }
     }
 
@@ -97,10 +83,7 @@ impl Rot {
     #[inline]
     #[must_use]
     pub fn inverse(self) -> Self {
-        Self {
-            c: self.c,
-            s: self.s.saturating_neg(),
-        }
+        Self { c: self.c, s: self.s.saturating_neg() }
     }
 
     /// The relative rotation `self⁻¹ ∘ other`.
@@ -149,10 +132,7 @@ pub struct Transform {
 
 impl Transform {
     /// The identity transform.
-    pub const IDENTITY: Self = Self {
-        p: Vector2::ZERO,
-        q: Rot::IDENTITY,
-    };
+    pub const IDENTITY: Self = Self { p: Vector2::ZERO, q: Rot::IDENTITY };
 
     /// A transform from a translation and a rotation.
     #[inline]
@@ -178,10 +158,7 @@ impl Transform {
     /// The transform of frame `b` expressed in frame `self`: `self⁻¹ ∘ b`.
     #[must_use]
     pub fn inv_mul(self, b: Self) -> Self {
-        Self {
-            p: self.q.inv_rotate(b.p - self.p),
-            q: self.q.inv_mul(b.q),
-        }
+        Self { p: self.q.inv_rotate(b.p - self.p), q: self.q.inv_mul(b.q) }
     }
 }
 
@@ -195,9 +172,7 @@ mod tests {
         let step = Scalar::lit("0.05");
         for _ in 0..10_000 {
             q = q.integrate(step);
-            let len2 =
-                q.c.saturating_mul(q.c)
-                    .saturating_add(q.s.saturating_mul(q.s));
+            let len2 = q.c.saturating_mul(q.c).saturating_add(q.s.saturating_mul(q.s));
             assert!((len2.saturating_sub(ONE)).abs() < Scalar::lit("0.000000005"));
         }
     }

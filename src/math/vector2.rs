@@ -23,15 +23,9 @@ impl Vector2 {
     /// The zero vector.
     pub const ZERO: Self = Self { x: ZERO, y: ZERO };
     /// The unit x axis.
-    pub const X: Self = Self {
-        x: scalar::ONE,
-        y: ZERO,
-    };
+    pub const X: Self = Self { x: scalar::ONE, y: ZERO };
     /// The unit y axis.
-    pub const Y: Self = Self {
-        x: ZERO,
-        y: scalar::ONE,
-    };
+    pub const Y: Self = Self { x: ZERO, y: scalar::ONE };
 
     /// A vector from its components.
     #[inline]
@@ -44,29 +38,20 @@ impl Vector2 {
     #[inline]
     #[must_use]
     pub const fn from_int(x: i32, y: i32) -> Self {
-        Self {
-            x: scalar::from_int(x),
-            y: scalar::from_int(y),
-        }
+        Self { x: scalar::from_int(x), y: scalar::from_int(y) }
     }
 
     /// Conversion from floats at the API edge: `None` when a component is NaN,
     /// infinite or outside the `Scalar` range.
     #[must_use]
     pub fn checked_from_f64(x: f64, y: f64) -> Option<Self> {
-        Some(Self {
-            x: scalar::checked_from_f64(x)?,
-            y: scalar::checked_from_f64(y)?,
-        })
+        Some(Self { x: scalar::checked_from_f64(x)?, y: scalar::checked_from_f64(y)? })
     }
 
     /// Conversion from `f32` floats at the API edge; see [`Self::checked_from_f64`].
     #[must_use]
     pub fn checked_from_f32(x: f32, y: f32) -> Option<Self> {
-        Some(Self {
-            x: scalar::checked_from_f32(x)?,
-            y: scalar::checked_from_f32(y)?,
-        })
+        Some(Self { x: scalar::checked_from_f32(x)?, y: scalar::checked_from_f32(y)? })
     }
 
     /// Conversion from floats at the API edge with an error naming the parameter.
@@ -75,10 +60,7 @@ impl Vector2 {
     /// [`Error::NotFinite`](crate::Error::NotFinite) when a component is NaN,
     /// infinite or outside the `Scalar` range.
     pub fn try_from_f64(x: f64, y: f64, what: &'static str) -> Result<Self, crate::Error> {
-        Ok(Self {
-            x: scalar::try_from_f64(x, what)?,
-            y: scalar::try_from_f64(y, what)?,
-        })
+        Ok(Self { x: scalar::try_from_f64(x, what)?, y: scalar::try_from_f64(y, what)? })
     }
 
     /// Conversion from `f32` floats at the API edge; see [`Self::try_from_f64`].
@@ -86,10 +68,7 @@ impl Vector2 {
     /// # Errors
     /// [`Error::NotFinite`](crate::Error::NotFinite).
     pub fn try_from_f32(x: f32, y: f32, what: &'static str) -> Result<Self, crate::Error> {
-        Ok(Self {
-            x: scalar::try_from_f32(x, what)?,
-            y: scalar::try_from_f32(y, what)?,
-        })
+        Ok(Self { x: scalar::try_from_f32(x, what)?, y: scalar::try_from_f32(y, what)? })
     }
 
     /// Conversion to floats for output (rendering, logging).
@@ -108,9 +87,7 @@ impl Vector2 {
     #[inline]
     #[must_use]
     pub fn dot(self, o: Self) -> Scalar {
-        self.x
-            .saturating_mul(o.x)
-            .saturating_add(self.y.saturating_mul(o.y))
+        self.x.saturating_mul(o.x).saturating_add(self.y.saturating_mul(o.y))
     }
 
     /// 2D cross product of two vectors, `a × b = a.x·b.y − a.y·b.x` (a scalar: the z
@@ -118,19 +95,14 @@ impl Vector2 {
     #[inline]
     #[must_use]
     pub fn cross(self, o: Self) -> Scalar {
-        self.x
-            .saturating_mul(o.y)
-            .saturating_sub(self.y.saturating_mul(o.x))
+        self.x.saturating_mul(o.y).saturating_sub(self.y.saturating_mul(o.x))
     }
 
     /// Cross product of a vector and a scalar (z-axis), `v × s = (s·v.y, −s·v.x)`.
     #[inline]
     #[must_use]
     pub fn cross_vs(self, s: Scalar) -> Self {
-        Self {
-            x: s.saturating_mul(self.y),
-            y: s.saturating_mul(self.x).saturating_neg(),
-        }
+        Self { x: s.saturating_mul(self.y), y: s.saturating_mul(self.x).saturating_neg() }
     }
 
     /// Cross product of a scalar (z-axis) and a vector, `s × v = (−s·v.y, s·v.x)`:
@@ -138,30 +110,21 @@ impl Vector2 {
     #[inline]
     #[must_use]
     pub fn cross_sv(s: Scalar, v: Self) -> Self {
-        Self {
-            x: s.saturating_mul(v.y).saturating_neg(),
-            y: s.saturating_mul(v.x),
-        }
+        Self { x: s.saturating_mul(v.y).saturating_neg(), y: s.saturating_mul(v.x) }
     }
 
     /// The vector rotated by +90°: `(−y, x)`.
     #[inline]
     #[must_use]
     pub fn perp(self) -> Self {
-        Self {
-            x: self.y.saturating_neg(),
-            y: self.x,
-        }
+        Self { x: self.y.saturating_neg(), y: self.x }
     }
 
     /// The vector rotated by −90°: `(y, −x)`.
     #[inline]
     #[must_use]
     pub fn right_perp(self) -> Self {
-        Self {
-            x: self.y,
-            y: self.x.saturating_neg(),
-        }
+        Self { x: self.y, y: self.x.saturating_neg() }
     }
 
     /// Squared length. Exact only while both components are below about 32,767;
@@ -185,16 +148,10 @@ impl Vector2 {
         // overflow); shifting right drops at most 18 low bits (2^-45 relative).
         Some(if top < TARGET_BIT {
             let k = TARGET_BIT - top;
-            (
-                Self::new(Scalar::from_bits(xb << k), Scalar::from_bits(yb << k)),
-                -(k as i32),
-            )
+            (Self::new(Scalar::from_bits(xb << k), Scalar::from_bits(yb << k)), -(k as i32))
         } else {
             let k = top - TARGET_BIT;
-            (
-                Self::new(Scalar::from_bits(xb >> k), Scalar::from_bits(yb >> k)),
-                k as i32,
-            )
+            (Self::new(Scalar::from_bits(xb >> k), Scalar::from_bits(yb >> k)), k as i32)
         })
     }
 
@@ -355,10 +312,7 @@ mod tests {
     #[test]
     fn length_is_exact_for_pythagorean_triples_at_any_scale() {
         assert_eq!(Vector2::from_int(3, 4).length(), from_int(5));
-        assert_eq!(
-            Vector2::from_int(300_000, 400_000).length(),
-            from_int(500_000)
-        );
+        assert_eq!(Vector2::from_int(300_000, 400_000).length(), from_int(500_000));
         let big = Vector2::from_int(1_000_000_000, 0).length();
         assert_eq!(big, from_int(1_000_000_000));
     }
@@ -370,17 +324,10 @@ mod tests {
         // A vector one ulp long still has a direction.
         assert_eq!(Vector2::new(ZERO, EPS).normalize(), Vector2::Y);
         // Millimetre vectors normalise to unit length within 1e-9.
-        let (n, l) =
-            Vector2::new(Scalar::lit("0.0003"), Scalar::lit("0.0004")).normalize_and_length();
-        assert!(
-            (n.length() - ONE).abs() < Scalar::lit("0.000000001"),
-            "{n:?}"
-        );
+        let (n, l) = Vector2::new(Scalar::lit("0.0003"), Scalar::lit("0.0004")).normalize_and_length();
+        assert!((n.length() - ONE).abs() < Scalar::lit("0.000000001"), "{n:?}");
         // The inputs themselves are rounded to 2^-32 ≈ 2.3e-10.
-        assert!(
-            (l - Scalar::lit("0.0005")).abs() < Scalar::lit("0.000000001"),
-            "{l}"
-        );
+        assert!((l - Scalar::lit("0.0005")).abs() < Scalar::lit("0.000000001"), "{l}");
         let (n, l) = Vector2::from_int(0, -7).normalize_and_length();
         assert_eq!((n, l), (Vector2::from_int(0, -1), from_int(7)));
     }

@@ -1,0 +1,82 @@
+//! The manual's "Safely removing Bodies from the World": when a bullet hits a
+//! player, `bullet_hit` marks the player dead, schedules a post-step callback
+//! keyed by the player, and returns false so the collision is not resolved. After
+//! the step, `remove_dead_player` removes both bodies. A body can never be
+//! removed during a step: callbacks only get read access and the post-step queue.
+//!
+//! Run: `cargo run --example bullet_player`
+
+use arphysics::{
+    Arbiter, BodyDef, BodyHandle, CallbackContext, FnHandler, Rect, Scalar, Vector2, World, WorldBuffers,
+    WorldDef,
+};
+
+const PLAYER_LEVEL: u32 = 1;
+const BULLET_LEVEL: u32 = 2;
+
+/// The game's side: which bullet hit which player. A real game keeps this in its
+/// own entity store and puts an entity id in each body's user data; here a player's
+/// user data holds the bullet that hit it, so the key is all the callback needs.
+fn key_of(player: BodyHandle) -> u64 {
+    (u64::from(player.index()) << 32) | u64::from(player.generation())
+}
+
+fn player_of(key: u64) -> BodyHandle {
+    BodyHandle::from_parts((key >> 32) as u32, key as u32)
+}
+
+fn bullet_hit(arbiter: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
+    // Which body is the player and which the bullet, from their levels.
+    let Some((player, bullet)) = arbiter.bodies_by_level(PLAYER_LEVEL) else { return true };
+    println!("player {player:?} hit by bullet {bullet:?}");
+    // Remove them after the step; the key is the player.
+    if let Err(e) = ctx.add_post_step_callback(remove_dead_player, key_of(player)) {
+        eprintln!("could not schedule the removal: {e}");
+    }
+    // No point resolving a collision whose bodies are about to go.
+    false
+}
+
+fn remove_dead_player(world: &mut World<'_>, key: u64) {
+    let player = player_of(key);
+    let bullet = world
+        .body(player)
+        .map(|b| BodyHandle::from_parts((b.user_data() >> 32) as u32, b.user_data() as u32));
+    let removed_player = world.remove_body(player).is_ok();
+    let removed_bullet = bullet.map(|b| world.remove_body(b).is_ok()).unwrap_or(false);
+    println!("post-step: removed player {removed_player}, bullet {removed_bullet}");
+}
+
+fn main() -> Result<(), arphysics::Error> {
+    let s = Scalar::from_num::<f64>;
+    let mut buffers = WorldBuffers::<8, 32>::new();
+    let bounds = Rect::from_corners(Vector2::from_int(-50, -50), Vector2::from_int(50, 50));
+    let mut world = World::new(WorldDef::with_bounds(bounds), buffers.storage())?;
+    world.add_collision_handler(
+        PLAYER_LEVEL,
+        BULLET_LEVEL,
+        FnHandler { begin: Some(bullet_hit), ..FnHandler::default() },
+    )?;
+
+    let player = world
+        .add_body(BodyDef::circle(s(0.5)).position(Vector2::from_int(5, 0)).collision_level(PLAYER_LEVEL))?;
+    let bullet = world.add_body(
+        BodyDef::circle(s(0.05))
+            .position(Vector2::from_int(-5, 0))
+            .linear_velocity(Vector2::from_int(100, 0))
+            .mass(s(0.01))
+            .collision_level(BULLET_LEVEL),
+    )?;
+    // The game remembers which bullet is flying at the player.
+    world.body_mut(player)?.set_user_data(key_of(bullet));
+
+    for step in 1..=30 {
+        let report = world.step(s(1.0 / 60.0))?;
+        if report.post_step_callbacks > 0 {
+            println!("step {step}: {} post-step callback(s) ran", report.post_step_callbacks);
+        }
+    }
+    println!("bodies left in the world: {}", world.body_count());
+    assert!(world.body(player).is_err() && world.body(bullet).is_err());
+    Ok(())
+}

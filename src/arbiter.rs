@@ -1,0 +1,274 @@
+//! [`Arbiter`]: the state of the collision between two bodies.
+//!
+//! The engine keeps one arbiter per pair of bodies that touch, sorted by the pair's
+//! canonical key, from step to step. It carries the manual's five states, the
+//! contact manifold, the friction and restitution used for this pair (which a
+//! `pre_solve` handler may change), and the impulses the solver accumulated, which
+//! warm-start the next step and tell a game how hard the bodies hit.
+//!
+//! # Lifecycle (per step, for each pair)
+//! * touching and `NoCollision` or `Separated` → `FirstContact`, the handler's
+//!   `begin` runs; it returns `true` → `Contact`, `false` → `Ignoring`;
+//! * touching and `Contact` → stays; `pre_solve` decides whether it is solved this
+//!   step; touching and `Ignoring` → stays ignored, no callbacks;
+//! * not touching and `Contact` or `Ignoring` → `Separated`, and `end` runs (so
+//!   `begin` and `end` always come in pairs, as in Chipmunk);
+//! * an arbiter is kept for [`WorldDef::arbiter_persistence`] steps after its bodies
+//!   stopped touching, counting the step they separated (the manual's
+//!   `increaseStepCount`), so a resting contact that flickers keeps its accumulated
+//!   impulses; then it is dropped.
+//!
+//! "Touching" means the narrow phase found at least one contact point within the
+//! speculative margin ([`SPECULATIVE_DISTANCE`](crate::world::SPECULATIVE_DISTANCE)).
+//!
+//! [`WorldDef::arbiter_persistence`]: crate::WorldDef::arbiter_persistence
+
+use crate::body::BodyHandle;
+use crate::math::scalar::{self, Scalar, ZERO};
+use crate::math::Vector2;
+
+/// The manual's arbiter states.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[repr(u8)]
+pub enum ArbiterState {
+    /// No collision detected yet (a new arbiter).
+    #[default]
+    NoCollision = 0,
+    /// The bodies collided on this step (seen only inside `begin`).
+    FirstContact = 1,
+    /// `begin` returned false: not resolved, no callbacks, until they separate.
+    Ignoring = 2,
+    /// Touching and resolved.
+    Contact = 3,
+    /// They stopped touching; kept for a few steps.
+    Separated = 4,
+}
+
+/// One contact point of an arbiter.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ContactPoint {
+    /// World position (m), midway between the surfaces, at the start of the step.
+    pub point: Vector2,
+    /// Separation along the normal at the start of the step (m; negative = overlap).
+    pub separation: Scalar,
+    /// Feature id: stays the same while the same features touch.
+    pub id: u16,
+    /// Accumulated normal impulse (N·s) of the last sub-step, used to warm-start.
+    pub normal_impulse: Scalar,
+    /// Accumulated friction impulse (N·s) of the last sub-step.
+    pub tangent_impulse: Scalar,
+    /// Normal impulse applied over the whole step (N·s): how hard they pressed.
+    pub total_normal_impulse: Scalar,
+    /// Largest single normal impulse in the step (N·s), e.g. for impact sounds.
+    pub max_normal_impulse: Scalar,
+    // Solver data for this step (derived; not part of the snapshot).
+    pub(crate) anchor_a: Vector2,
+    pub(crate) anchor_b: Vector2,
+    pub(crate) local_a: Vector2,
+    pub(crate) local_b: Vector2,
+    pub(crate) normal_mass: Scalar,
+    pub(crate) tangent_mass: Scalar,
+    pub(crate) relative_velocity: Scalar,
+}
+
+/// The collision state of a pair of bodies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Arbiter {
+    pub(crate) body_a: BodyHandle,
+    pub(crate) body_b: BodyHandle,
+    pub(crate) level_a: u32,
+    pub(crate) level_b: u32,
+    pub(crate) state: ArbiterState,
+    pub(crate) steps_separated: u32,
+    pub(crate) normal: Vector2,
+    pub(crate) points: [ContactPoint; 2],
+    pub(crate) count: u8,
+    pub(crate) friction: Scalar,
+    pub(crate) restitution: Scalar,
+    /// Solve this step (derived: set by the lifecycle and `pre_solve`).
+    pub(crate) solve: bool,
+    /// Inverse masses of A and B for this step (0 unless dynamic; derived).
+    pub(crate) inv_mass: [Scalar; 2],
+    /// Inverse inertias of A and B for this step (derived).
+    pub(crate) inv_inertia: [Scalar; 2],
+    /// One body has infinite mass: use the stiffer static softness (derived).
+    pub(crate) static_pair: bool,
+}
+
+impl Arbiter {
+    pub(crate) const EMPTY: Self = Self {
+        body_a: BodyHandle::NULL,
+        body_b: BodyHandle::NULL,
+        level_a: 0,
+        level_b: 0,
+        state: ArbiterState::NoCollision,
+        steps_separated: 0,
+        normal: Vector2::ZERO,
+        points: [ContactPoint {
+            point: Vector2::ZERO,
+            separation: ZERO,
+            id: 0,
+            normal_impulse: ZERO,
+            tangent_impulse: ZERO,
+            total_normal_impulse: ZERO,
+            max_normal_impulse: ZERO,
+            anchor_a: Vector2::ZERO,
+            anchor_b: Vector2::ZERO,
+            local_a: Vector2::ZERO,
+            local_b: Vector2::ZERO,
+            normal_mass: ZERO,
+            tangent_mass: ZERO,
+            relative_velocity: ZERO,
+        }; 2],
+        count: 0,
+        friction: ZERO,
+        restitution: ZERO,
+        solve: false,
+        inv_mass: [ZERO; 2],
+        inv_inertia: [ZERO; 2],
+        static_pair: false,
+    };
+
+    /// The canonical key of the pair: (lower body slot, higher body slot).
+    #[inline]
+    pub(crate) fn key(&self) -> (u32, u32) {
+        let (a, b) = (self.body_a.index(), self.body_b.index());
+        if a <= b {
+            (a, b)
+        } else {
+            (b, a)
+        }
+    }
+
+    /// The first body. Bodies are ordered as in the manual: circles before
+    /// polygons, then by slot. The normal points from A to B.
+    #[inline]
+    #[must_use]
+    pub fn body_a(&self) -> BodyHandle {
+        self.body_a
+    }
+
+    /// The second body.
+    #[inline]
+    #[must_use]
+    pub fn body_b(&self) -> BodyHandle {
+        self.body_b
+    }
+
+    /// Both bodies, `(a, b)`.
+    #[inline]
+    #[must_use]
+    pub fn bodies(&self) -> (BodyHandle, BodyHandle) {
+        (self.body_a, self.body_b)
+    }
+
+    /// The collision levels of bodies A and B.
+    #[inline]
+    #[must_use]
+    pub fn levels(&self) -> (u32, u32) {
+        (self.level_a, self.level_b)
+    }
+
+    /// The body with collision level `level` and the other one, e.g. to tell the
+    /// player from the bullet in a handler registered for both levels. `None` when
+    /// neither body has that level.
+    #[must_use]
+    pub fn bodies_by_level(&self, level: u32) -> Option<(BodyHandle, BodyHandle)> {
+        if self.level_a == level {
+            Some((self.body_a, self.body_b))
+        } else if self.level_b == level {
+            Some((self.body_b, self.body_a))
+        } else {
+            None
+        }
+    }
+
+    /// The state.
+    #[inline]
+    #[must_use]
+    pub fn state(&self) -> ArbiterState {
+        self.state
+    }
+
+    /// True while in the first step of a collision (inside `begin`).
+    #[inline]
+    #[must_use]
+    pub fn is_first_contact(&self) -> bool {
+        self.state == ArbiterState::FirstContact
+    }
+
+    /// Unit normal from A to B.
+    #[inline]
+    #[must_use]
+    pub fn normal(&self) -> Vector2 {
+        self.normal
+    }
+
+    /// The contact points (none once separated).
+    #[inline]
+    #[must_use]
+    pub fn contact_points(&self) -> &[ContactPoint] {
+        self.points.get(..usize::from(self.count)).unwrap_or(&[])
+    }
+
+    /// Friction coefficient used for this pair.
+    #[inline]
+    #[must_use]
+    pub fn friction(&self) -> Scalar {
+        self.friction
+    }
+
+    /// Changes the friction for this pair (clamped to ≥ 0); from `pre_solve`, it
+    /// applies to this step.
+    pub fn set_friction(&mut self, mu: Scalar) {
+        self.friction = mu.max(ZERO);
+    }
+
+    /// Restitution used for this pair.
+    #[inline]
+    #[must_use]
+    pub fn restitution(&self) -> Scalar {
+        self.restitution
+    }
+
+    /// Changes the restitution for this pair (clamped to [0, 1]).
+    pub fn set_restitution(&mut self, e: Scalar) {
+        self.restitution = scalar::clamp(e, ZERO, scalar::ONE);
+    }
+
+    /// Total normal impulse over the last step, summed over the contact points
+    /// (N·s): what a game uses to compute damage.
+    #[must_use]
+    pub fn total_normal_impulse(&self) -> Scalar {
+        self.contact_points().iter().fold(ZERO, |acc, p| acc.saturating_add(p.total_normal_impulse))
+    }
+
+    /// Steps since the bodies stopped touching (0 while touching).
+    #[inline]
+    #[must_use]
+    pub fn steps_separated(&self) -> u32 {
+        self.steps_separated
+    }
+
+    /// The manual's `increaseStepCount`: adds one to the steps since separation
+    /// and returns the new count. The engine calls it for arbiters that are not
+    /// touching; a custom lifecycle may too.
+    pub fn increase_step_count(&mut self) -> u32 {
+        self.steps_separated = self.steps_separated.saturating_add(1);
+        self.steps_separated
+    }
+}
+
+/// The friction of a pair: the geometric mean √(μa·μb), so a frictionless body
+/// slides on anything (Box2D's rule).
+#[must_use]
+pub fn mix_friction(a: Scalar, b: Scalar) -> Scalar {
+    scalar::sqrt(a.saturating_mul(b))
+}
+
+/// The restitution of a pair: the larger of the two, so a bouncy ball bounces on
+/// a dead floor (Box2D's rule).
+#[must_use]
+pub fn mix_restitution(a: Scalar, b: Scalar) -> Scalar {
+    a.max(b)
+}

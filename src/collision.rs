@@ -1,0 +1,406 @@
+//! The collision stage of the step: broad phase, narrow phase, and the arbiter
+//! lifecycle with its callbacks (see [`crate::arbiter`] and [`crate::handler`]).
+//!
+//! Arbiters are kept in an array sorted by the pair key (lower body slot, higher
+//! body slot). Each step the broad phase's candidate pairs, sorted the same way, are
+//! merged with that array into the other of two buffers: a key in both is an
+//! ongoing pair, a key only among the candidates is a new pair, a key only among
+//! the arbiters is a pair whose boxes no longer overlap. No hashing, no search, and
+//! an order that depends only on body slots.
+
+use managed::{Managed, ManagedSlice};
+
+use crate::arbiter::{mix_friction, mix_restitution, Arbiter, ArbiterState};
+use crate::arena::Arena;
+use crate::body::{Body, BodyType, Shape};
+use crate::collide::{collide_circles, collide_polygon_circle, collide_polygons, Manifold};
+use crate::error::Error;
+use crate::geometry::PolygonPath;
+use crate::handler::{CallbackContext, HandlerTable};
+use crate::index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};
+use crate::math::Scalar;
+use crate::world::{World, SPECULATIVE_DISTANCE};
+
+/// The broad phase a world uses.
+pub enum Index<'a> {
+    /// Test all pairs (the default).
+    BruteForce(BruteForceIndex),
+    /// A game's own index, borrowed or (with `alloc`) boxed.
+    Custom(Managed<'a, dyn SpatialIndex + Send + 'a>),
+}
+
+impl<'a> Index<'a> {
+    /// A game's index, borrowed for the world's lifetime.
+    pub fn borrowed(i: &'a mut (dyn SpatialIndex + Send + 'a)) -> Self {
+        Self::Custom(Managed::Borrowed(i))
+    }
+
+    /// A game's index, owned by the world.
+    #[cfg(feature = "alloc")]
+    pub fn boxed(i: alloc::boxed::Box<dyn SpatialIndex + Send + 'a>) -> Self {
+        Self::Custom(Managed::Owned(i))
+    }
+
+    fn as_dyn_mut(&mut self) -> &mut (dyn SpatialIndex + Send + 'a) {
+        match self {
+            Self::BruteForce(i) => i,
+            Self::Custom(i) => &mut **i,
+        }
+    }
+}
+
+impl Default for Index<'_> {
+    fn default() -> Self {
+        Self::BruteForce(BruteForceIndex)
+    }
+}
+
+/// Scratch and persistent buffers of the collision stage.
+pub(crate) struct Contacts<'a> {
+    pub(crate) proxies: ManagedSlice<'a, Proxy>,
+    pub(crate) proxy_bodies: ManagedSlice<'a, u32>,
+    pub(crate) pairs: ManagedSlice<'a, (u32, u32)>,
+    pub(crate) arbiters: ManagedSlice<'a, Arbiter>,
+    pub(crate) next: ManagedSlice<'a, Arbiter>,
+    pub(crate) arbiter_count: usize,
+}
+
+impl Contacts<'_> {
+    /// The live arbiters, in key order.
+    pub(crate) fn live(&self) -> &[Arbiter] {
+        self.arbiters.get(..self.arbiter_count).unwrap_or(&[])
+    }
+
+    pub(crate) fn live_mut(&mut self) -> &mut [Arbiter] {
+        let n = self.arbiter_count;
+        self.arbiters.get_mut(..n).unwrap_or(&mut [])
+    }
+}
+
+/// True when the manual's filter lets two bodies collide: at least one dynamic
+/// body (both infinite-mass bodies ⇒ skip) and no shared collision-group bit.
+pub(crate) fn should_collide(a: &Body, b: &Body) -> bool {
+    (a.body_type == BodyType::Dynamic || b.body_type == BodyType::Dynamic)
+        && (a.collision_groups & b.collision_groups) == 0
+}
+
+impl World<'_> {
+    /// Builds the proxies, runs the index, and leaves the sorted, deduplicated,
+    /// filtered candidate pairs (as body slot pairs) in `pairs[..n]`. Changes no
+    /// simulation state.
+    ///
+    /// # Errors
+    /// [`Error::CapacityFull`] when the bodies do not fit the proxy buffer or the
+    /// pairs do not fit the contact buffer, or the merged arbiters would not fit.
+    pub(crate) fn broad_phase(&mut self, dt: Scalar) -> Result<usize, Error> {
+        let c = &mut self.contacts;
+        let mut n = 0usize;
+        for (h, b) in self.bodies.iter() {
+            if b.out_of_bounds {
+                continue;
+            }
+            let (Some(p), Some(pb)) = (c.proxies.get_mut(n), c.proxy_bodies.get_mut(n)) else {
+                return Err(Error::CapacityFull { what: "broad-phase proxy" });
+            };
+            let margin = SPECULATIVE_DISTANCE.saturating_add(sweep(b, dt));
+            *p = Proxy { aabb: b.aabb.expand(margin), is_static: b.body_type == BodyType::Static };
+            *pb = h.index();
+            n = n.saturating_add(1);
+        }
+        let proxies = c.proxies.get(..n).unwrap_or(&[]);
+        let mut sink = PairSink { pairs: &mut c.pairs, len: 0, overflowed: false };
+        self.index.as_dyn_mut().find_pairs(proxies, &mut sink);
+        if sink.overflowed {
+            return Err(Error::CapacityFull { what: "contact pair" });
+        }
+        let reported = sink.len;
+        // Map proxy indices to body slots, dropping out-of-range reports and pairs
+        // the manual's filter rejects. Proxies are in slot order, so (i < j) maps to
+        // (slot_i < slot_j) and the key order is preserved.
+        let mut kept = 0usize;
+        for k in 0..reported {
+            let Some(&(i, j)) = c.pairs.get(k) else { break };
+            let (Some(&sa), Some(&sb)) = (c.proxy_bodies.get(i as usize), c.proxy_bodies.get(j as usize))
+            else {
+                continue;
+            };
+            if i as usize >= n || j as usize >= n {
+                continue;
+            }
+            let (Some(a), Some(b)) = (self.bodies.get_at(sa), self.bodies.get_at(sb)) else { continue };
+            if !should_collide(a, b) {
+                continue;
+            }
+            if let Some(slot) = c.pairs.get_mut(kept) {
+                *slot = (sa.min(sb), sa.max(sb));
+                kept = kept.saturating_add(1);
+            }
+        }
+        let pairs = c.pairs.get_mut(..kept).unwrap_or(&mut []);
+        pairs.sort_unstable();
+        let unique = dedup_sorted(pairs);
+        // The merge writes one arbiter per key of the union; check it fits first.
+        let live = c.arbiters.get(..c.arbiter_count).unwrap_or(&[]);
+        let union = merged_len(c.pairs.get(..unique).unwrap_or(&[]), live);
+        if union > c.next.len() {
+            return Err(Error::CapacityFull { what: "arbiter" });
+        }
+        Ok(unique)
+    }
+
+    /// Narrow phase and arbiter lifecycle for the `npairs` candidates left by
+    /// [`World::broad_phase`]: writes the new sorted arbiter array and runs
+    /// `begin`, `pre_solve` and `end` in key order.
+    pub(crate) fn update_arbiters(&mut self, npairs: usize, dt: Scalar) {
+        let persistence = self.def.arbiter_persistence;
+        let World { bodies, paths, contacts: c, handlers, post_step, .. } = self;
+        let bodies: &Arena<'_, Body> = bodies;
+        let (mut i, mut j, mut out) = (0usize, 0usize, 0usize);
+        loop {
+            let cand = c.pairs.get(i).copied().filter(|_| i < npairs);
+            let old = c.arbiters.get(j).copied().filter(|_| j < c.arbiter_count);
+            let (key, candidate, previous) = match (cand, old) {
+                (None, None) => break,
+                (Some(k), None) => (k, true, None),
+                (None, Some(a)) => (a.key(), false, Some(a)),
+                (Some(k), Some(a)) => match k.cmp(&a.key()) {
+                    core::cmp::Ordering::Less => (k, true, None),
+                    core::cmp::Ordering::Greater => (a.key(), false, Some(a)),
+                    core::cmp::Ordering::Equal => (k, true, Some(a)),
+                },
+            };
+            if candidate {
+                i = i.saturating_add(1);
+            }
+            if previous.is_some() {
+                j = j.saturating_add(1);
+            }
+            let Some(mut arb) = pair_arbiter(bodies, key, previous) else { continue };
+            let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else { continue };
+            let manifold = if candidate && should_collide(a, b) {
+                let margin = SPECULATIVE_DISTANCE.saturating_add(sweep(a, dt)).saturating_add(sweep(b, dt));
+                collide_bodies(a, b, paths, margin)
+            } else {
+                Manifold::EMPTY
+            };
+            arb.friction = mix_friction(a.friction, b.friction);
+            arb.restitution = mix_restitution(a.restitution, b.restitution);
+            let mut ctx = CallbackContext { bodies, post_step: &mut *post_step };
+            if !lifecycle(&mut arb, &manifold, handlers, &mut ctx, persistence) {
+                continue;
+            }
+            if let Some(slot) = c.next.get_mut(out) {
+                *slot = arb;
+                out = out.saturating_add(1);
+            }
+        }
+        core::mem::swap(&mut c.arbiters, &mut c.next);
+        c.arbiter_count = out;
+    }
+
+    /// Calls `post_solve` for every arbiter solved this step, in key order.
+    pub(crate) fn post_solve_callbacks(&mut self) {
+        let World { bodies, contacts, handlers, post_step, .. } = self;
+        if handlers.is_empty() {
+            return;
+        }
+        for arb in contacts.live() {
+            if !arb.solve {
+                continue;
+            }
+            if let Some(h) = handlers.get(arb.level_a, arb.level_b) {
+                let mut ctx = CallbackContext { bodies, post_step: &mut *post_step };
+                h.post_solve(arb, &mut ctx);
+            }
+        }
+    }
+
+    /// Ends and drops every arbiter of body slot `index` (before the body is
+    /// removed), calling `end` for those that had begun.
+    pub(crate) fn end_arbiters_of(&mut self, index: u32) {
+        let World { bodies, contacts: c, handlers, post_step, .. } = self;
+        let mut out = 0usize;
+        for k in 0..c.arbiter_count {
+            let Some(mut arb) = c.arbiters.get(k).copied() else { break };
+            if arb.body_a.index() == index || arb.body_b.index() == index {
+                if matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring) {
+                    arb.state = ArbiterState::Separated;
+                    if let Some(h) = handlers.get(arb.level_a, arb.level_b) {
+                        let mut ctx = CallbackContext { bodies, post_step: &mut *post_step };
+                        h.end(&arb, &mut ctx);
+                    }
+                }
+                continue;
+            }
+            if let Some(slot) = c.arbiters.get_mut(out) {
+                *slot = arb;
+            }
+            out = out.saturating_add(1);
+        }
+        c.arbiter_count = out;
+    }
+}
+
+/// Runs one pair's lifecycle for this step. Returns whether to keep the arbiter.
+fn lifecycle(
+    arb: &mut Arbiter,
+    m: &Manifold,
+    handlers: &mut HandlerTable<'_>,
+    ctx: &mut CallbackContext<'_>,
+    persistence: u32,
+) -> bool {
+    arb.solve = false;
+    if m.count > 0 {
+        set_manifold(arb, m);
+        arb.steps_separated = 0;
+        if matches!(arb.state, ArbiterState::NoCollision | ArbiterState::Separated) {
+            arb.state = ArbiterState::FirstContact;
+            let resolve = handlers.get(arb.level_a, arb.level_b).is_none_or(|h| h.begin(arb, ctx));
+            arb.state = if resolve { ArbiterState::Contact } else { ArbiterState::Ignoring };
+        }
+        if arb.state == ArbiterState::Contact {
+            arb.solve = handlers.get(arb.level_a, arb.level_b).is_none_or(|h| h.pre_solve(arb, ctx));
+        }
+        return true;
+    }
+    // Not touching (or its boxes no longer overlap).
+    arb.count = 0;
+    if matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring) {
+        arb.state = ArbiterState::Separated;
+        if let Some(h) = handlers.get(arb.level_a, arb.level_b) {
+            h.end(arb, ctx);
+        }
+    }
+    if arb.state == ArbiterState::NoCollision {
+        // A new pair that did not touch: nothing to remember.
+        return false;
+    }
+    arb.increase_step_count() <= persistence
+}
+
+/// Copies a manifold into the arbiter, carrying the accumulated impulses of
+/// points whose feature id persists (warm starting).
+fn set_manifold(arb: &mut Arbiter, m: &Manifold) {
+    let old = arb.points;
+    let old_count = usize::from(arb.count);
+    let mut points = Arbiter::EMPTY.points;
+    for (dst, src) in points.iter_mut().zip(m.points()) {
+        dst.point = src.point;
+        dst.separation = src.separation;
+        dst.id = src.id;
+        dst.anchor_a = src.anchor_a;
+        dst.anchor_b = src.anchor_b;
+        if let Some(o) = old.iter().take(old_count).find(|o| o.id == src.id) {
+            dst.normal_impulse = o.normal_impulse;
+            dst.tangent_impulse = o.tangent_impulse;
+        }
+    }
+    arb.points = points;
+    arb.count = m.count.min(2) as u8;
+    arb.normal = m.normal;
+}
+
+/// The arbiter for a key: the previous one (if its bodies are still the same
+/// live bodies) or a new one with the bodies in canonical order. `None` when a
+/// body no longer exists.
+fn pair_arbiter(bodies: &Arena<'_, Body>, key: (u32, u32), previous: Option<Arbiter>) -> Option<Arbiter> {
+    let (ha, hb) = (bodies.handle_at(key.0)?, bodies.handle_at(key.1)?);
+    if let Some(p) = previous {
+        if bodies.contains(p.body_a) && bodies.contains(p.body_b) {
+            return Some(p);
+        }
+    }
+    let (a, b) = (bodies.get(ha)?, bodies.get(hb)?);
+    // The manual's order: the body with the smaller shape kind first (circles
+    // before polygons); the key order breaks ties.
+    let (first, second, fa, fb) =
+        if b.shape.kind_rank() < a.shape.kind_rank() { (hb, ha, b, a) } else { (ha, hb, a, b) };
+    Some(Arbiter {
+        body_a: first,
+        body_b: second,
+        level_a: fa.collision_level,
+        level_b: fb.collision_level,
+        ..Arbiter::EMPTY
+    })
+}
+
+/// How far any point of the body can move in `dt` at its current velocity, as an
+/// upper bound: (|vx| + |vy| + |ω|·r)·dt. Contacts are made this much earlier, so the
+/// solver's speculative constraint stops a fast body at the surface instead of
+/// finding it deep inside next step (speculative continuous collision).
+fn sweep(b: &Body, dt: Scalar) -> Scalar {
+    if !b.is_awake_mover() {
+        return Scalar::ZERO;
+    }
+    let v = b.linear_velocity;
+    v.x.saturating_abs()
+        .saturating_add(v.y.saturating_abs())
+        .saturating_add(b.angular_velocity.saturating_abs().saturating_mul(b.radius))
+        .saturating_mul(dt)
+}
+
+/// The contact manifold of two bodies in canonical order (normal from A to B),
+/// with points reported up to `margin` apart.
+fn collide_bodies(a: &Body, b: &Body, paths: &Arena<'_, PolygonPath>, margin: Scalar) -> Manifold {
+    let (xa, xb) = (a.transform(), b.transform());
+    match (a.shape, b.shape) {
+        (Shape::Circle { radius: ra }, Shape::Circle { radius: rb }) => {
+            collide_circles(ra, xa, rb, xb, margin)
+        }
+        (Shape::Polygon(pa), Shape::Polygon(pb)) => match (paths.get(pa), paths.get(pb)) {
+            (Some(pa), Some(pb)) => collide_polygons(pa, xa, pb, xb, margin),
+            _ => Manifold::EMPTY,
+        },
+        (Shape::Polygon(pa), Shape::Circle { radius }) => match paths.get(pa) {
+            Some(p) => collide_polygon_circle(p, xa, radius, xb, margin),
+            None => Manifold::EMPTY,
+        },
+        (Shape::Circle { radius }, Shape::Polygon(pb)) => match paths.get(pb) {
+            // Computed with the polygon as A, then flipped so the normal runs from
+            // the circle (A) to the polygon (B).
+            Some(p) => flip(collide_polygon_circle(p, xb, radius, xa, margin)),
+            None => Manifold::EMPTY,
+        },
+    }
+}
+
+fn flip(mut m: Manifold) -> Manifold {
+    m.normal = -m.normal;
+    for p in m.points.iter_mut() {
+        core::mem::swap(&mut p.anchor_a, &mut p.anchor_b);
+    }
+    m
+}
+
+/// Removes adjacent duplicates in place; returns the new length.
+fn dedup_sorted(v: &mut [(u32, u32)]) -> usize {
+    let mut n = 0usize;
+    for k in 0..v.len() {
+        let Some(&x) = v.get(k) else { break };
+        if n == 0 || v.get(n.wrapping_sub(1)) != Some(&x) {
+            if let Some(slot) = v.get_mut(n) {
+                *slot = x;
+            }
+            n = n.saturating_add(1);
+        }
+    }
+    n
+}
+
+/// Size of the union of two key-sorted lists.
+fn merged_len(pairs: &[(u32, u32)], arbiters: &[Arbiter]) -> usize {
+    let (mut i, mut j, mut n) = (0usize, 0usize, 0usize);
+    while i < pairs.len() || j < arbiters.len() {
+        match (pairs.get(i), arbiters.get(j).map(Arbiter::key)) {
+            (Some(p), Some(k)) if *p == k => {
+                i = i.saturating_add(1);
+                j = j.saturating_add(1);
+            }
+            (Some(p), Some(k)) if *p < k => i = i.saturating_add(1),
+            (Some(_), None) => i = i.saturating_add(1),
+            _ => j = j.saturating_add(1),
+        }
+        n = n.saturating_add(1);
+    }
+    n
+}

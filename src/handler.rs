@@ -1,0 +1,231 @@
+//! Collision handlers, keyed by collision levels, and post-step callbacks.
+//!
+//! A [`CollisionHandler`] hears about the collisions between bodies of two
+//! collision levels (an unordered pair: a handler for (1, 2) also hears (2, 1)).
+//! Pairs without a registered handler go to the default handler, which resolves
+//! everything unless the game replaces it
+//! ([`World::set_default_collision_handler`](crate::World::set_default_collision_handler)).
+//!
+//! # When and in what order handlers run
+//! All callbacks run on the thread calling `step`, one at a time, in the canonical
+//! pair order (by the lower body slot, then the higher): during the narrow phase,
+//! `begin`, `pre_solve` and `end` as each pair's state changes; after the solver,
+//! `post_solve` for every solved pair in the same order; after the step, the
+//! post-step callbacks in the order they were registered. The order depends only on
+//! the simulation state, never on capacities or addresses.
+//!
+//! Handlers cannot change the world during the step: they see the arbiter and the
+//! bodies (read-only), and register post-step callbacks through the
+//! [`CallbackContext`] to remove bodies or make other changes safely afterwards.
+//! Removing a body during a step is impossible by construction.
+
+use managed::Managed;
+
+use crate::arbiter::Arbiter;
+use crate::arena::Arena;
+use crate::body::{Body, BodyHandle};
+use crate::error::Error;
+use crate::world::World;
+
+/// Most collision handlers (level pairs) a world can register.
+pub const MAX_COLLISION_HANDLERS: usize = 16;
+
+/// Most post-step callbacks one step can queue.
+pub const MAX_POST_STEP_CALLBACKS: usize = 64;
+
+/// A post-step callback: runs once after the step with the world and its key.
+pub type PostStepFn = for<'w> fn(&mut World<'w>, u64);
+
+/// A game's reaction to collisions. Every method has a default that resolves
+/// the collision, so implement only what you need.
+pub trait CollisionHandler {
+    /// The bodies started touching. Return `false` to ignore this collision (no
+    /// resolution, no further callbacks) until they separate.
+    fn begin(&mut self, arbiter: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
+        let _ = (arbiter, ctx);
+        true
+    }
+
+    /// Before this step's resolution. Return `false` to skip it for this step
+    /// only. May change the arbiter's friction or restitution for this step.
+    fn pre_solve(&mut self, arbiter: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
+        let _ = (arbiter, ctx);
+        true
+    }
+
+    /// After resolution: the impulses of this step are in the arbiter.
+    fn post_solve(&mut self, arbiter: &Arbiter, ctx: &mut CallbackContext<'_>) {
+        let _ = (arbiter, ctx);
+    }
+
+    /// The bodies stopped touching (also called when one of them is removed while
+    /// touching, so `begin` and `end` always pair up).
+    fn end(&mut self, arbiter: &Arbiter, ctx: &mut CallbackContext<'_>) {
+        let _ = (arbiter, ctx);
+    }
+}
+
+/// The handler that resolves everything (the manual's default).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ResolveAll;
+
+impl CollisionHandler for ResolveAll {}
+
+/// Signature of a `begin` or `pre_solve` function.
+pub type ArbiterFilterFn = fn(&mut Arbiter, &mut CallbackContext<'_>) -> bool;
+/// Signature of a `post_solve` or `end` function.
+pub type ArbiterEventFn = fn(&Arbiter, &mut CallbackContext<'_>);
+
+/// A handler made of plain functions, any of them absent (the manual's
+/// `addCollisionHandler(level1, level2, begin, preSolve, postSolve, end)` with
+/// `NULL`s). Needs no allocation and no borrow.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FnHandler {
+    /// `begin`, or resolve.
+    pub begin: Option<ArbiterFilterFn>,
+    /// `pre_solve`, or resolve.
+    pub pre_solve: Option<ArbiterFilterFn>,
+    /// `post_solve`, or nothing.
+    pub post_solve: Option<ArbiterEventFn>,
+    /// `end`, or nothing.
+    pub end: Option<ArbiterEventFn>,
+}
+
+impl CollisionHandler for FnHandler {
+    fn begin(&mut self, a: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
+        self.begin.is_none_or(|f| f(a, ctx))
+    }
+    fn pre_solve(&mut self, a: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
+        self.pre_solve.is_none_or(|f| f(a, ctx))
+    }
+    fn post_solve(&mut self, a: &Arbiter, ctx: &mut CallbackContext<'_>) {
+        if let Some(f) = self.post_solve {
+            f(a, ctx);
+        }
+    }
+    fn end(&mut self, a: &Arbiter, ctx: &mut CallbackContext<'_>) {
+        if let Some(f) = self.end {
+            f(a, ctx);
+        }
+    }
+}
+
+/// A collision handler stored in a world.
+pub enum Handler<'a> {
+    /// Plain functions.
+    Functions(FnHandler),
+    /// A game's handler object, borrowed or (with `alloc`) boxed.
+    Custom(Managed<'a, dyn CollisionHandler + Send + 'a>),
+}
+
+impl<'a> Handler<'a> {
+    /// A game's handler, borrowed for the world's lifetime.
+    pub fn borrowed(h: &'a mut (dyn CollisionHandler + Send + 'a)) -> Self {
+        Self::Custom(Managed::Borrowed(h))
+    }
+
+    /// A game's handler, owned by the world.
+    #[cfg(feature = "alloc")]
+    pub fn boxed(h: alloc::boxed::Box<dyn CollisionHandler + Send + 'a>) -> Self {
+        Self::Custom(Managed::Owned(h))
+    }
+
+    /// The handler as a trait object.
+    pub fn as_dyn_mut(&mut self) -> &mut (dyn CollisionHandler + Send + 'a) {
+        match self {
+            Self::Functions(f) => f,
+            Self::Custom(h) => &mut **h,
+        }
+    }
+}
+
+impl From<FnHandler> for Handler<'_> {
+    fn from(f: FnHandler) -> Self {
+        Self::Functions(f)
+    }
+}
+
+/// Handlers by unordered level pair, plus the default.
+pub(crate) struct HandlerTable<'a> {
+    entries: heapless::Vec<((u32, u32), Handler<'a>), MAX_COLLISION_HANDLERS>,
+    default: Option<Handler<'a>>,
+}
+
+fn level_key(a: u32, b: u32) -> (u32, u32) {
+    if a <= b {
+        (a, b)
+    } else {
+        (b, a)
+    }
+}
+
+impl<'a> HandlerTable<'a> {
+    pub(crate) const fn new() -> Self {
+        Self { entries: heapless::Vec::new(), default: None }
+    }
+
+    pub(crate) fn add(&mut self, a: u32, b: u32, h: Handler<'a>) -> Result<(), Error> {
+        let key = level_key(a, b);
+        if self.entries.iter().any(|(k, _)| *k == key) {
+            return Err(Error::InvalidOperation { what: "a handler is already registered for these levels" });
+        }
+        self.entries.push((key, h)).map_err(|_| Error::CapacityFull { what: "collision handler" })
+    }
+
+    pub(crate) fn remove(&mut self, a: u32, b: u32) -> Option<Handler<'a>> {
+        let key = level_key(a, b);
+        let i = self.entries.iter().position(|(k, _)| *k == key)?;
+        // `remove` (not `swap_remove`) keeps registration order, which lookups rely on.
+        Some(self.entries.remove(i).1)
+    }
+
+    pub(crate) fn set_default(&mut self, h: Option<Handler<'a>>) -> Option<Handler<'a>> {
+        core::mem::replace(&mut self.default, h)
+    }
+
+    /// The handler for a level pair: the registered one, else the default, else
+    /// `None` (resolve everything, no callbacks).
+    pub(crate) fn get(&mut self, a: u32, b: u32) -> Option<&mut (dyn CollisionHandler + Send + 'a)> {
+        let key = level_key(a, b);
+        let found = self.entries.iter_mut().find(|(k, _)| *k == key).map(|(_, h)| h);
+        found.or(self.default.as_mut()).map(Handler::as_dyn_mut)
+    }
+
+    pub(crate) fn is_empty(&self) -> bool {
+        self.entries.is_empty() && self.default.is_none()
+    }
+}
+
+/// The queue of post-step callbacks, one per key.
+pub(crate) type PostStepQueue = heapless::Vec<(PostStepFn, u64), MAX_POST_STEP_CALLBACKS>;
+
+/// What a collision callback may look at and do during a step.
+pub struct CallbackContext<'c> {
+    pub(crate) bodies: &'c Arena<'c, Body>,
+    pub(crate) post_step: &'c mut PostStepQueue,
+}
+
+impl CallbackContext<'_> {
+    /// A body, read-only (for its collision level, user data, velocity…).
+    #[must_use]
+    pub fn body(&self, h: BodyHandle) -> Option<&Body> {
+        self.bodies.get(h)
+    }
+
+    /// Schedules `f(world, key)` to run once after this step (the manual's
+    /// `addPostStepCallback`): the safe place to remove bodies. Returns
+    /// `Ok(false)` when a callback with this key is already scheduled (it still
+    /// runs once).
+    ///
+    /// # Errors
+    /// [`Error::CapacityFull`] when [`MAX_POST_STEP_CALLBACKS`] are queued.
+    pub fn add_post_step_callback(&mut self, f: PostStepFn, key: u64) -> Result<bool, Error> {
+        if self.post_step.iter().any(|(_, k)| *k == key) {
+            return Ok(false);
+        }
+        self.post_step
+            .push((f, key))
+            .map(|()| true)
+            .map_err(|_| Error::CapacityFull { what: "post-step callback" })
+    }
+}

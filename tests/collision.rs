@@ -1,0 +1,361 @@
+//! The collision story: callbacks in order, the arbiter lifecycle, persistence,
+//! filtering, custom indexes, post-step callbacks, and bounded tables.
+
+use std::sync::{Arc, Mutex};
+
+use arphysics::handler::{MAX_COLLISION_HANDLERS, MAX_POST_STEP_CALLBACKS};
+use arphysics::{
+    Arbiter, ArbiterState, BodyDef, BodyHandle, CallbackContext, CollisionHandler, Error, FnHandler,
+    GravityForceGenerator, Handler, Index, PairSink, PolygonPath, Proxy, Rect, Scalar, SpatialIndex, Vector2,
+    World, WorldDef,
+};
+
+fn s(x: f64) -> Scalar {
+    Scalar::from_num(x)
+}
+
+fn v(x: f64, y: f64) -> Vector2 {
+    Vector2::new(s(x), s(y))
+}
+
+const DT: f64 = 1.0 / 60.0;
+
+/// A world 200 m wide centred on the origin, gravity −10, a static floor whose top
+/// is at y = 0 (collision level `floor_level`).
+fn floor_world(floor_level: u32) -> (World<'static>, BodyHandle) {
+    let bounds = Rect::from_corners(v(-100.0, -100.0), v(100.0, 100.0));
+    let mut w = World::with_capacities(WorldDef::with_bounds(bounds), arphysics::Capacities::for_bodies(64))
+        .expect("world");
+    let floor = w.add_path(PolygonPath::rectangle(s(40.0), s(2.0)).expect("floor")).expect("path");
+    let f = w
+        .add_body(BodyDef::polygon(floor).position(v(0.0, -1.0)).static_body().collision_level(floor_level))
+        .expect("floor");
+    w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0))).expect("gravity");
+    (w, f)
+}
+
+/// What a recording handler heard, with the step it heard it in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Event {
+    Begin(u64),
+    PreSolve(u64),
+    PostSolve(u64),
+    End(u64),
+}
+
+/// Records every callback into a shared log; `begin` and `pre_solve` answers are
+/// scripted.
+struct Recorder {
+    log: Arc<Mutex<Vec<Event>>>,
+    step: Arc<Mutex<u64>>,
+    begin_answer: bool,
+    skip_pre_solve_at: Option<u64>,
+}
+
+impl Recorder {
+    fn now(&self) -> u64 {
+        *self.step.lock().expect("step")
+    }
+    fn push(&self, e: Event) {
+        self.log.lock().expect("log").push(e);
+    }
+}
+
+impl CollisionHandler for Recorder {
+    fn begin(&mut self, a: &mut Arbiter, _: &mut CallbackContext<'_>) -> bool {
+        assert_eq!(a.state(), ArbiterState::FirstContact);
+        self.push(Event::Begin(self.now()));
+        self.begin_answer
+    }
+    fn pre_solve(&mut self, _: &mut Arbiter, _: &mut CallbackContext<'_>) -> bool {
+        let now = self.now();
+        self.push(Event::PreSolve(now));
+        self.skip_pre_solve_at != Some(now)
+    }
+    fn post_solve(&mut self, a: &Arbiter, _: &mut CallbackContext<'_>) {
+        assert!(a.total_normal_impulse() >= Scalar::ZERO);
+        self.push(Event::PostSolve(self.now()));
+    }
+    fn end(&mut self, a: &Arbiter, _: &mut CallbackContext<'_>) {
+        assert_eq!(a.state(), ArbiterState::Separated);
+        self.push(Event::End(self.now()));
+    }
+}
+
+struct Script {
+    world: World<'static>,
+    log: Arc<Mutex<Vec<Event>>>,
+    step: Arc<Mutex<u64>>,
+}
+
+impl Script {
+    /// A ball of level 1 above a floor of level 2, with a recorder on (2, 1).
+    fn new(ball: BodyDef, begin_answer: bool, skip_pre_solve_at: Option<u64>) -> (Self, BodyHandle) {
+        let (mut world, _) = floor_world(2);
+        let log = Arc::new(Mutex::new(Vec::new()));
+        let step = Arc::new(Mutex::new(0));
+        let rec = Recorder { log: log.clone(), step: step.clone(), begin_answer, skip_pre_solve_at };
+        // Registered as (2, 1): must fire for the ball (1) on the floor (2) too.
+        world.add_collision_handler(2, 1, Handler::boxed(Box::new(rec))).expect("handler");
+        let b = world.add_body(ball.collision_level(1)).expect("ball");
+        (Self { world, log, step }, b)
+    }
+
+    fn run(&mut self, steps: u64) {
+        for _ in 0..steps {
+            *self.step.lock().expect("step") += 1;
+            self.world.step(s(DT)).expect("step");
+        }
+    }
+
+    fn events(&self) -> Vec<Event> {
+        self.log.lock().expect("log").clone()
+    }
+}
+
+#[test]
+fn a_bouncing_ball_begins_once_solves_each_touching_step_and_ends_once() {
+    // Restitution 0.8: it lands, bounces off, and leaves the floor.
+    let ball = BodyDef::circle(s(0.5)).position(v(0.0, 3.0)).restitution(s(0.8));
+    let (mut sc, b) = Script::new(ball, true, None);
+    let mut left_at = None;
+    for _ in 0..120 {
+        sc.run(1);
+        let events = sc.events();
+        if left_at.is_none() && events.iter().any(|e| matches!(e, Event::End(_))) {
+            left_at = Some(*sc.step.lock().expect("step"));
+            break;
+        }
+    }
+    let events = sc.events();
+    let begins: Vec<_> = events.iter().filter(|e| matches!(e, Event::Begin(_))).collect();
+    let ends: Vec<_> = events.iter().filter(|e| matches!(e, Event::End(_))).collect();
+    assert_eq!(begins.len(), 1, "{events:?}");
+    assert_eq!(ends.len(), 1, "{events:?}");
+    let (Event::Begin(first), Some(Event::End(last))) = (begins[0], events.last()) else {
+        panic!("{events:?}")
+    };
+    // Every step from begin until the end step has exactly pre_solve then post_solve.
+    for step in *first..*last {
+        let at: Vec<_> = events
+            .iter()
+            .filter(|e| matches!(e, Event::PreSolve(t) | Event::PostSolve(t) if *t == step))
+            .collect();
+        assert_eq!(at, [&Event::PreSolve(step), &Event::PostSolve(step)], "step {step}: {events:?}");
+    }
+    assert!(sc.world.body(b).expect("ball").linear_velocity().y > s(0.0), "moving up when it separated");
+    assert!(left_at.is_some());
+}
+
+#[test]
+fn begin_returning_false_lets_the_body_pass_through_silently_until_it_separates() {
+    let ball = BodyDef::circle(s(0.5)).position(v(0.0, 2.0));
+    let (mut sc, b) = Script::new(ball, false, None);
+    sc.run(120);
+    let events = sc.events();
+    assert_eq!(events.iter().filter(|e| matches!(e, Event::Begin(_))).count(), 1, "{events:?}");
+    assert!(!events.iter().any(|e| matches!(e, Event::PreSolve(_) | Event::PostSolve(_))), "{events:?}");
+    // It fell through the 2 m floor and out the bottom: separated, `end` once.
+    assert_eq!(events.iter().filter(|e| matches!(e, Event::End(_))).count(), 1, "{events:?}");
+    assert!(sc.world.body(b).expect("ball").position().y < s(-2.0));
+}
+
+#[test]
+fn pre_solve_returning_false_skips_one_step_only() {
+    let ball = BodyDef::circle(s(0.5)).position(v(0.0, 0.5));
+    let (mut sc, b) = Script::new(ball, true, Some(31));
+    sc.run(30);
+    let y30 = sc.world.body(b).expect("ball").position().y;
+    assert!((y30 - s(0.5)).abs() < s(0.002), "resting: {y30}");
+    sc.run(1); // step 31: not resolved, falls freely into the floor for one step
+    let y31 = sc.world.body(b).expect("ball").position().y;
+    assert!(y31 < y30 - s(0.001), "sank while unresolved: {y30} → {y31}");
+    sc.run(60);
+    let y = sc.world.body(b).expect("ball").position().y;
+    assert!((y - s(0.5)).abs() < s(0.002), "resolved again: {y}");
+    let events = sc.events();
+    assert!(events.contains(&Event::PreSolve(31)) && !events.contains(&Event::PostSolve(31)), "{events:?}");
+    assert!(events.contains(&Event::PostSolve(32)));
+    assert_eq!(events.iter().filter(|e| matches!(e, Event::Begin(_))).count(), 1);
+}
+
+#[test]
+fn an_arbiter_persists_for_exactly_the_configured_steps_after_separation() {
+    for persistence in [0u32, 3, 5] {
+        let bounds = Rect::from_corners(v(-100.0, -100.0), v(100.0, 100.0));
+        let mut def = WorldDef::with_bounds(bounds);
+        def.arbiter_persistence = persistence;
+        let mut w = World::with_capacities(def, arphysics::Capacities::for_bodies(8)).expect("world");
+        let floor_path = w.add_path(PolygonPath::rectangle(s(40.0), s(2.0)).expect("p")).expect("p");
+        let floor2 =
+            w.add_body(BodyDef::polygon(floor_path).position(v(0.0, -1.0)).static_body()).expect("f");
+        let ball = w.add_body(BodyDef::circle(s(0.5)).position(v(0.0, 0.5))).expect("ball");
+        w.step(s(DT)).expect("step");
+        assert_eq!(w.arbiter(ball, floor2).map(Arbiter::state), Some(ArbiterState::Contact));
+        // Lift it clear (teleport), so the separation step is known exactly.
+        w.set_position(ball, v(0.0, 50.0)).expect("lift");
+        let mut alive_after = 0;
+        for _ in 0..10 {
+            w.step(s(DT)).expect("step");
+            match w.arbiter(ball, floor2) {
+                Some(a) => {
+                    assert_eq!(a.state(), ArbiterState::Separated);
+                    alive_after += 1;
+                }
+                None => break,
+            }
+        }
+        assert_eq!(alive_after, persistence, "persistence {persistence}");
+    }
+}
+
+#[test]
+fn groups_sharing_a_bit_and_static_pairs_never_collide() {
+    let (mut w, floor) = floor_world(0);
+    let a = w.add_body(BodyDef::circle(s(0.5)).position(v(-5.0, 0.5)).collision_groups(0b01)).expect("a");
+    let b = w.add_body(BodyDef::circle(s(0.5)).position(v(-5.0, 1.4)).collision_groups(0b11)).expect("b");
+    let c = w.add_body(BodyDef::circle(s(0.5)).position(v(5.0, 1.4)).collision_groups(0b10)).expect("c");
+    let d = w.add_body(BodyDef::circle(s(0.5)).position(v(5.0, 0.5)).collision_groups(0b01)).expect("d");
+    let e = w.add_body(BodyDef::circle(s(1.0)).position(v(20.0, 0.5)).static_body()).expect("e");
+    for _ in 0..10 {
+        w.step(s(DT)).expect("step");
+    }
+    assert!(w.arbiter(a, b).is_none(), "share bit 0");
+    assert!(w.arbiter(c, d).is_some(), "no common bit");
+    assert!(w.arbiter(floor, e).is_none(), "both static");
+    assert!(w.arbiter(a, floor).is_some());
+}
+
+/// A test index that reports every overlapping pair three times, in reverse,
+/// swapped, plus self-pairs and out-of-range indices: the engine must produce
+/// exactly what the brute-force index produces.
+struct SloppyIndex;
+
+impl SpatialIndex for SloppyIndex {
+    fn find_pairs(&mut self, proxies: &[Proxy], out: &mut PairSink<'_>) {
+        let n = proxies.len() as u32;
+        for i in (0..n).rev() {
+            out.push(i, i);
+            out.push(i, n + 7);
+            for j in 0..i {
+                let (a, b) = (&proxies[i as usize], &proxies[j as usize]);
+                if arphysics::index::proxies_may_touch(a, b) {
+                    out.push(i, j);
+                    out.push(j, i);
+                    out.push(i, j);
+                }
+            }
+        }
+    }
+}
+
+fn pile(w: &mut World<'_>) {
+    let boxp = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("path");
+    for i in 0..12 {
+        let x = f64::from(i % 4) * 1.1 - 2.0;
+        let y = 0.5 + f64::from(i / 4) * 1.5;
+        w.add_body(BodyDef::polygon(boxp).position(v(x, y)).angle(s(0.1 * f64::from(i)))).expect("box");
+        w.add_body(BodyDef::circle(s(0.3)).position(v(x + 0.4, y + 0.8))).expect("ball");
+    }
+}
+
+#[test]
+fn a_custom_index_gives_the_same_world_as_brute_force_even_when_sloppy() {
+    let (mut reference, _) = floor_world(0);
+    pile(&mut reference);
+    let (mut custom, _) = floor_world(0);
+    custom.set_spatial_index(Index::boxed(Box::new(SloppyIndex)));
+    pile(&mut custom);
+    for step in 0..240 {
+        reference.step(s(DT)).expect("step");
+        custom.step(s(DT)).expect("step");
+        assert_eq!(reference.state_hash(), custom.state_hash(), "diverged at step {step}");
+    }
+    assert!(reference.arbiters().count() > 10);
+}
+
+#[test]
+fn a_full_pair_buffer_is_an_error_and_changes_nothing() {
+    let bounds = Rect::from_corners(v(-100.0, -100.0), v(100.0, 100.0));
+    let mut w = World::with_capacities(
+        WorldDef::with_bounds(bounds),
+        arphysics::Capacities { bodies: 16, paths: 4, contacts: 2 },
+    )
+    .expect("world");
+    for i in 0..4 {
+        w.add_body(BodyDef::circle(s(0.5)).position(v(f64::from(i) * 0.9, 0.0))).expect("ball");
+    }
+    let before = w.state_hash();
+    assert_eq!(w.step(s(DT)).err(), Some(Error::CapacityFull { what: "contact pair" }));
+    assert_eq!(w.state_hash(), before);
+}
+
+#[test]
+fn the_handler_table_is_bounded_and_rejects_duplicates() {
+    let (mut w, _) = floor_world(0);
+    w.add_collision_handler(1, 2, FnHandler::default()).expect("first");
+    assert!(matches!(
+        w.add_collision_handler(2, 1, FnHandler::default()),
+        Err(Error::InvalidOperation { .. })
+    ));
+    for level in 1..MAX_COLLISION_HANDLERS as u32 {
+        w.add_collision_handler(100, level, FnHandler::default()).expect("room");
+    }
+    assert_eq!(
+        w.add_collision_handler(7, 7, FnHandler::default()).err(),
+        Some(Error::CapacityFull { what: "collision handler" })
+    );
+    assert!(w.remove_collision_handler(2, 1).is_some());
+    w.add_collision_handler(7, 7, FnHandler::default()).expect("room again");
+}
+
+fn count_post_step(w: &mut World<'_>, key: u64) {
+    // Remove the body named by the key: safe here, after the step.
+    let h = BodyHandle::from_parts((key >> 32) as u32, key as u32);
+    let _ = w.remove_body(h);
+}
+
+fn schedule_many(_: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
+    let mut full = None;
+    for key in 0..(MAX_POST_STEP_CALLBACKS as u64 + 5) {
+        if let Err(e) = ctx.add_post_step_callback(count_post_step, 1_000_000 + key) {
+            full = Some(e);
+        }
+        // The same key twice runs once.
+        assert_eq!(ctx.add_post_step_callback(count_post_step, 1_000_000), Ok(false));
+    }
+    assert_eq!(full, Some(Error::CapacityFull { what: "post-step callback" }));
+    true
+}
+
+#[test]
+fn the_post_step_queue_is_bounded_and_runs_each_key_once() {
+    let (mut w, _) = floor_world(2);
+    w.add_collision_handler(1, 2, FnHandler { begin: Some(schedule_many), ..FnHandler::default() })
+        .expect("h");
+    w.add_body(BodyDef::circle(s(0.5)).position(v(0.0, 0.5)).collision_level(1)).expect("ball");
+    let report = w.step(s(DT)).expect("step");
+    assert_eq!(report.post_step_callbacks, MAX_POST_STEP_CALLBACKS as u32);
+    assert_eq!(w.step(s(DT)).expect("step").post_step_callbacks, 0, "the queue is emptied");
+}
+
+#[test]
+fn removing_a_body_in_a_post_step_callback_ends_its_arbiters() {
+    let (mut w, floor) = floor_world(2);
+    let log = Arc::new(Mutex::new(Vec::new()));
+    let step = Arc::new(Mutex::new(0));
+    let rec = Recorder { log: log.clone(), step, begin_answer: true, skip_pre_solve_at: None };
+    w.add_collision_handler(1, 2, Handler::boxed(Box::new(rec))).expect("h");
+    let ball = w.add_body(BodyDef::circle(s(0.5)).position(v(0.0, 0.5)).collision_level(1)).expect("ball");
+    for _ in 0..5 {
+        w.step(s(DT)).expect("step");
+    }
+    assert!(w.arbiter(ball, floor).is_some());
+    let key = (u64::from(ball.index()) << 32) | u64::from(ball.generation());
+    count_post_step(&mut w, key);
+    assert!(w.body(ball).is_err());
+    assert!(w.arbiters().next().is_none(), "its arbiter went with it");
+    let events = log.lock().expect("log").clone();
+    assert_eq!(events.iter().filter(|e| matches!(e, Event::End(_))).count(), 1, "end on removal: {events:?}");
+    w.step(s(DT)).expect("the world steps on");
+}
