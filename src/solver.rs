@@ -141,18 +141,8 @@ impl World<'_> {
                 let (ra, rb) = (cp.anchor_a, cp.anchor_b);
                 cp.local_a = a.rotation.inv_rotate(ra);
                 cp.local_b = b.rotation.inv_rotate(rb);
-                let (rna, rnb) = (ra.cross(n), rb.cross(n));
-                let k_normal = ma
-                    .saturating_add(mb)
-                    .saturating_add(ia.saturating_mul(rna.saturating_mul(rna)))
-                    .saturating_add(ib.saturating_mul(rnb.saturating_mul(rnb)));
-                cp.normal_mass = scalar::recip(k_normal);
-                let (rta, rtb) = (ra.cross(t), rb.cross(t));
-                let k_tangent = ma
-                    .saturating_add(mb)
-                    .saturating_add(ia.saturating_mul(rta.saturating_mul(rta)))
-                    .saturating_add(ib.saturating_mul(rtb.saturating_mul(rtb)));
-                cp.tangent_mass = scalar::recip(k_tangent);
+                cp.normal_mass = effective_mass(ma, mb, ia, ib, ra, rb, n);
+                cp.tangent_mass = effective_mass(ma, mb, ia, ib, ra, rb, t);
                 let dv = b.velocity_at_offset(rb) - a.velocity_at_offset(ra);
                 cp.relative_velocity = dv.dot(n);
                 cp.total_normal_impulse = ZERO;
@@ -236,6 +226,26 @@ impl World<'_> {
         let quarter_turn = scalar::div(scalar::FRAC_PI_2.saturating_mul(scalar::HALF), dt);
         self.def.max_angular_speed.min(quarter_turn)
     }
+}
+
+/// 1 / (mA + mB + iA·(rA × d)² + iB·(rB × d)²): the inverse of the mass the
+/// pair presents to an impulse along `d` at anchors `ra`, `rb` (0 if infinite).
+#[allow(clippy::too_many_arguments)]
+fn effective_mass(
+    ma: Scalar,
+    mb: Scalar,
+    ia: Scalar,
+    ib: Scalar,
+    ra: Vector2,
+    rb: Vector2,
+    d: Vector2,
+) -> Scalar {
+    let (rda, rdb) = (ra.cross(d), rb.cross(d));
+    let k = ma
+        .saturating_add(mb)
+        .saturating_add(ia.saturating_mul(rda.saturating_mul(rda)))
+        .saturating_add(ib.saturating_mul(rdb.saturating_mul(rdb)));
+    scalar::recip(k)
 }
 
 /// Applies impulse `p` at anchors `ra` (to A, negated) and `rb` (to B).
