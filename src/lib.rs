@@ -1,7 +1,102 @@
 #![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
-//! arphysics (crate docs being written).
+//! # arphysics
+//!
+//! A deterministic, fixed-point, `no_std`, allocation-optional 2D rigid-body physics
+//! engine implementing the ARPhysics design: worlds, pluggable spatial indexing,
+//! circle and convex polygon bodies sharing polygon paths, arbiters with the five
+//! states of the manual, force generators, collision handlers keyed by collision
+//! levels, collision groups and post-step callbacks.
+//!
+//! Built for lockstep and rollback multiplayer games (every peer computes the
+//! bit-identical world from the same inputs), embedded and console targets (no
+//! allocator, no FPU needed) and for fuzzing a game for desyncs.
+//!
+//! ```
+//! use arphysics::{BodyDef, GravityForceGenerator, Scalar, Vector2, World, WorldBuffers, WorldDef};
+//!
+//! // The manual's setup: a 320 × 240 world, a 5 kg ball, gravity.
+//! let mut buffers = WorldBuffers::<16, 64>::new(); // static storage: no allocator
+//! let mut world = World::new(WorldDef::new(Scalar::from_num(320), Scalar::from_num(240)), buffers.storage())?;
+//! let ball = world.add_body(
+//!     BodyDef::circle(Scalar::from_num(5)).position(Vector2::from_int(50, 50)).mass(Scalar::from_num(5)),
+//! )?;
+//! world.add_force_generator(GravityForceGenerator::new(Vector2::new(Scalar::ZERO, Scalar::lit("-9.81"))))?;
+//! let dt = Scalar::ONE / 60;
+//! for _ in 0..60 {
+//!     world.step(dt)?;
+//! }
+//! let y = world.body(ball)?.position().y;
+//! assert!(y < Scalar::from_num(46) && y > Scalar::from_num(44)); // fell ≈ g/2 in 1 s
+//! println!("state hash {:#x}", world.state_hash()); // equal on every target
+//! # Ok::<(), arphysics::Error>(())
+//! ```
+//!
+//! # Layers
+//! * [`math`]: [`Scalar`] (Q32.32 fixed point) and the small `Copy` value types
+//!   [`Vector2`], [`Rot`], [`Transform`], [`Matrix22`], [`Rect`]; deterministic
+//!   [`math::trig`] for angles at the API edge.
+//! * [`geometry`]: [`PolygonPath`] (exact convex hull, area, centroid, inertia),
+//!   circles and [`MassData`].
+//! * [`arena`]: fixed-capacity slots with generational [`Handle`]s: a removed
+//!   object's handle is an error, never another object.
+//! * [`body`], [`force`]: bodies and force generators.
+//! * [`index`], [`collide`], [`arbiter`], [`handler`], [`collision`]: the broad
+//!   phase (a trait you can implement), the narrow phase (one file per shape pair),
+//!   the arbiter lifecycle and the callbacks.
+//! * the solver: a sub-stepped soft contact solver (Box2D v3's design).
+//! * [`world`]: [`World`], which owns everything and runs [`World::step`]: broad
+//!   phase → forces → narrow phase and callbacks → solve and integrate → limits →
+//!   `post_solve` → post-step callbacks.
+//!
+//! # Features
+//! * `std` (default): implies `alloc`.
+//! * `alloc`: heap storage sized at run time ([`World::with_capacities`]), boxed
+//!   user hooks. Without it the whole engine runs on [`WorldBuffers`] (a local or a
+//!   `static`) and borrowed hooks; `cargo build --no-default-features --target
+//!   thumbv7em-none-eabihf` builds it for a Cortex-M4.
+//!
+//! # The determinism contract
+//! 1. **Bit-identical stepping.** No `f32`/`f64` arithmetic on the path of a step;
+//!    floats appear only in the documented conversion helpers
+//!    ([`math::scalar::try_from_f64`], [`Vector2::try_from_f64`], `to_f64`…). Equal
+//!    inputs give equal bytes of state on every target, in debug and release, at any
+//!    capacity; [`World::state_hash`] proves it (a golden hash is tested).
+//! 2. **No panic on any input.** Every fallible operation returns [`Error`]; a call
+//!    that returns an error has changed nothing. Arithmetic never uses a raw `+ - *
+//!    /` on `Scalar`: the value types saturate, the engine spells out `saturating_*`,
+//!    and ranges are kept far from saturation by validated inputs (see the limits
+//!    below).
+//! 3. **No allocation in a step** (a test counts), and none required at all.
+//! 4. **Iteration order comes from simulation state alone**: bodies in slot order,
+//!    pairs in (lower slot, higher slot) order, hooks in registration order.
+//! 5. **Everything that shapes future steps is hashed**: bodies, the body allocator,
+//!    arbiters with their accumulated impulses and persistence counters.
+//!
+//! # Limits (ranges that stay exact)
+//! | quantity | range | why |
+//! |---|---|---|
+//! | world bounds | within ±2^20 m ([`world::MAX_COORDINATE`]) | positions never overflow |
+//! | body radius | ≤ 128 m ([`world::MAX_BODY_RADIUS`]) | inertia ∝ r⁴ stays in range |
+//! | mass | 0.001 – 100,000 kg ([`geometry::mass`]) | momentum ≤ 2e8 |
+//! | speed | ≤ 2,048 m/s configurable, default 400 ([`WorldDef::max_linear_speed`]) | squared speeds exact |
+//! | spin | ≤ 256 rad/s, default 200, and ≤ π/4 per step | angular momentum in range |
+//! | time step | (0, 0.25] s ([`MAX_TIME_STEP`]) | bounded motion per step |
+//! | polygon | ≤ 8 vertices ([`geometry::MAX_POLYGON_VERTICES`]) | fixed-size, no allocation |
+//!
+//! # From the manual to Rust
+//! * Reference counting (`retain`/`release`/`new`) → ownership: the world owns its
+//!   bodies, paths and built-in generators; you hold typed, generational handles.
+//! * `new BruteForceIndexing()` → the default [`Index`]; a custom indexing system
+//!   implements [`SpatialIndex`] and only finds pairs: the arbiter lifecycle the
+//!   manual asks every index to re-implement lives once in the engine.
+//! * `Array` → fixed-capacity stores; a full one returns [`Error::CapacityFull`].
+//! * `addCollisionHandler(a, b, begin, preSolve, postSolve, end)` →
+//!   [`World::add_collision_handler`] with a [`FnHandler`] or any
+//!   [`CollisionHandler`]; `addPostStepCallback(func, key)` →
+//!   [`CallbackContext::add_post_step_callback`].
+
 
 #[cfg(feature = "alloc")]
 extern crate alloc;
