@@ -135,3 +135,8 @@ pub use world::{Capacities, GeneratorHandle, StepReport, Storage, World, WorldBu
 /// The longest time step [`World::step`] accepts: 0.25 s. Longer steps are never
 /// physically meaningful and would let fast bodies move too far in one step.
 pub const MAX_TIME_STEP: Scalar = Scalar::lit("0.25");
+
+/// The README's examples, compiled and run as doctests so they cannot rot.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
