@@ -97,7 +97,6 @@
 //!   [`CollisionHandler`]; `addPostStepCallback(func, key)` →
 //!   [`CallbackContext::add_post_step_callback`].
 
-
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
