@@ -24,6 +24,7 @@
 //! [`WorldDef::arbiter_persistence`]: crate::WorldDef::arbiter_persistence
 
 use crate::body::BodyHandle;
+use crate::math::scalar::ScalarExt as _;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::Vector2;
 
@@ -69,6 +70,12 @@ pub struct ContactPoint {
     pub(crate) normal_mass: Scalar,
     pub(crate) tangent_mass: Scalar,
     pub(crate) relative_velocity: Scalar,
+    /// rA × n, rB × n, rA × t, rB × t (derived, per step).
+    pub(crate) rn: [Scalar; 2],
+    pub(crate) rt: [Scalar; 2],
+    /// The same scaled by the inverse inertias: iA·(rA × n), iB·(rB × n), … (derived).
+    pub(crate) irn: [Scalar; 2],
+    pub(crate) irt: [Scalar; 2],
 }
 
 /// The collision state of a pair of bodies.
@@ -93,6 +100,10 @@ pub struct Arbiter {
     pub(crate) inv_inertia: [Scalar; 2],
     /// One body has infinite mass: use the stiffer static softness (derived).
     pub(crate) static_pair: bool,
+    /// n·mA, n·mB, t·mA, t·mB: the linear velocity change per unit impulse
+    /// (derived, per step).
+    pub(crate) n_m: [Vector2; 2],
+    pub(crate) t_m: [Vector2; 2],
 }
 
 impl Arbiter {
@@ -119,6 +130,10 @@ impl Arbiter {
             normal_mass: ZERO,
             tangent_mass: ZERO,
             relative_velocity: ZERO,
+            rn: [ZERO; 2],
+            rt: [ZERO; 2],
+            irn: [ZERO; 2],
+            irt: [ZERO; 2],
         }; 2],
         count: 0,
         friction: ZERO,
@@ -127,6 +142,8 @@ impl Arbiter {
         inv_mass: [ZERO; 2],
         inv_inertia: [ZERO; 2],
         static_pair: false,
+        n_m: [Vector2::ZERO; 2],
+        t_m: [Vector2::ZERO; 2],
     };
 
     /// The canonical key of the pair: (lower body slot, higher body slot).
@@ -263,7 +280,7 @@ impl Arbiter {
 /// slides on anything (Box2D's rule).
 #[must_use]
 pub fn mix_friction(a: Scalar, b: Scalar) -> Scalar {
-    scalar::sqrt(a.saturating_mul(b))
+    scalar::sqrt(a.sat_mul(b))
 }
 
 /// The restitution of a pair: the larger of the two, so a bouncy ball bounces on

@@ -10,6 +10,7 @@
 
 use crate::arena::Handle;
 use crate::geometry::{MassData, PolygonPath};
+use crate::math::scalar::ScalarExt as _;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rect, Rot, Transform, Vector2};
 
@@ -484,7 +485,7 @@ impl Body {
     pub fn apply_angular_impulse(&mut self, impulse: Scalar) {
         if self.is_dynamic() && !self.out_of_bounds {
             self.angular_velocity =
-                self.angular_velocity.saturating_add(impulse.saturating_mul(self.mass.inv_inertia));
+                self.angular_velocity.saturating_add(impulse.sat_mul(self.mass.inv_inertia));
         }
     }
 

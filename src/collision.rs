@@ -8,6 +8,7 @@
 //! the arbiters is a pair whose boxes no longer overlap. No hashing, no search, and
 //! an order that depends only on body slots.
 
+use crate::math::scalar::ScalarExt as _;
 use managed::{Managed, ManagedSlice};
 
 use crate::arbiter::{mix_friction, mix_restitution, Arbiter, ArbiterState};
@@ -335,8 +336,8 @@ fn sweep(b: &Body, dt: Scalar) -> Scalar {
     let v = b.linear_velocity;
     v.x.saturating_abs()
         .saturating_add(v.y.saturating_abs())
-        .saturating_add(b.angular_velocity.saturating_abs().saturating_mul(b.radius))
-        .saturating_mul(dt)
+        .saturating_add(b.angular_velocity.saturating_abs().sat_mul(b.radius))
+        .sat_mul(dt)
 }
 
 /// The contact manifold of two bodies in canonical order (normal from A to B),

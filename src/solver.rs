@@ -25,6 +25,7 @@
 
 use crate::arbiter::Arbiter;
 use crate::body::{Body, BodyType};
+use crate::math::scalar::ScalarExt as _;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::Vector2;
 use crate::world::World;
@@ -43,11 +44,11 @@ impl Softness {
         if hertz == ZERO {
             return Self { bias_rate: ZERO, mass_scale: scalar::ONE, impulse_scale: ZERO };
         }
-        let omega = scalar::TAU.saturating_mul(hertz);
-        let a1 = zeta.saturating_mul(scalar::TWO).saturating_add(h.saturating_mul(omega));
-        let a2 = h.saturating_mul(omega).saturating_mul(a1);
+        let omega = scalar::TAU.sat_mul(hertz);
+        let a1 = zeta.sat_mul(scalar::TWO).saturating_add(h.sat_mul(omega));
+        let a2 = h.sat_mul(omega).sat_mul(a1);
         let a3 = scalar::recip(scalar::ONE.saturating_add(a2));
-        Self { bias_rate: scalar::div(omega, a1), mass_scale: a2.saturating_mul(a3), impulse_scale: a3 }
+        Self { bias_rate: scalar::div(omega, a1), mass_scale: a2.sat_mul(a3), impulse_scale: a3 }
     }
 }
 
@@ -74,22 +75,22 @@ impl World<'_> {
     pub(crate) fn solve_and_integrate(&mut self, dt: Scalar) {
         let n = self.def.substeps.max(1);
         let inv_n = scalar::recip(Scalar::from_num(n));
-        let h = dt.saturating_mul(inv_n);
+        let h = dt.sat_mul(inv_n);
         let inv_h = scalar::recip(h);
         // Box2D caps the contact stiffness at a quarter of the sub-step rate.
-        let hertz = self.def.contact_hertz.min(inv_h.saturating_mul(Scalar::lit("0.25")));
+        let hertz = self.def.contact_hertz.min(inv_h.sat_mul(Scalar::lit("0.25")));
         let zeta = self.def.contact_damping_ratio;
         let params = StepParams {
             inv_h,
             soft: Softness::new(hertz, zeta, h),
-            static_soft: Softness::new(hertz.saturating_mul(scalar::TWO), zeta, h),
+            static_soft: Softness::new(hertz.sat_mul(scalar::TWO), zeta, h),
             push_speed: self.def.contact_push_speed,
         };
         self.prepare_contacts();
         // Each sub-step gets 1/n of the generators' velocity change.
         for (_, b) in self.bodies.iter_mut() {
             b.pending_v = b.pending_v * inv_n;
-            b.pending_w = b.pending_w.saturating_mul(inv_n);
+            b.pending_w = b.pending_w.sat_mul(inv_n);
         }
         let (vmax, wmax) = (self.def.max_linear_speed, self.angular_limit(dt));
         for _ in 0..n {
@@ -110,7 +111,7 @@ impl World<'_> {
                         Vector2::new(scalar::clamp(v.x, -vmax, vmax), scalar::clamp(v.y, -vmax, vmax));
                     b.angular_velocity = scalar::clamp(b.angular_velocity, -wmax, wmax);
                     b.position += b.linear_velocity * h;
-                    b.rotation = b.rotation.integrate(b.angular_velocity.saturating_mul(h));
+                    b.rotation = b.rotation.integrate(b.angular_velocity.sat_mul(h));
                 }
             }
             self.solve_contacts(&params, false);
@@ -145,9 +146,15 @@ impl World<'_> {
                 cp.tangent_mass = effective_mass(ma, mb, ia, ib, ra, rb, t);
                 let dv = b.velocity_at_offset(rb) - a.velocity_at_offset(ra);
                 cp.relative_velocity = dv.dot(n);
+                cp.rn = [ra.cross(n), rb.cross(n)];
+                cp.rt = [ra.cross(t), rb.cross(t)];
+                cp.irn = [ia.sat_mul(cp.rn[0]), ib.sat_mul(cp.rn[1])];
+                cp.irt = [ia.sat_mul(cp.rt[0]), ib.sat_mul(cp.rt[1])];
                 cp.total_normal_impulse = ZERO;
                 cp.max_normal_impulse = ZERO;
             }
+            arb.n_m = [n * ma, n * mb];
+            arb.t_m = [t * ma, t * mb];
             arb.inv_mass = [ma, mb];
             arb.inv_inertia = [ia, ib];
             arb.static_pair = ma == ZERO || mb == ZERO;
@@ -207,8 +214,8 @@ impl World<'_> {
                         continue;
                     }
                     let vn = (b.velocity_at_offset(cp.anchor_b) - a.velocity_at_offset(cp.anchor_a)).dot(n);
-                    let target = vn.saturating_add(e.saturating_mul(cp.relative_velocity));
-                    let impulse = cp.normal_mass.saturating_mul(target).saturating_neg();
+                    let target = vn.saturating_add(e.sat_mul(cp.relative_velocity));
+                    let impulse = cp.normal_mass.sat_mul(target).saturating_neg();
                     let new = cp.normal_impulse.saturating_add(impulse).max(ZERO);
                     let applied = new.saturating_sub(cp.normal_impulse);
                     cp.normal_impulse = new;
@@ -223,7 +230,7 @@ impl World<'_> {
     /// The angular speed limit for a step: the configured one, and at most a
     /// quarter turn per step.
     pub(crate) fn angular_limit(&self, dt: Scalar) -> Scalar {
-        let quarter_turn = scalar::div(scalar::FRAC_PI_2.saturating_mul(scalar::HALF), dt);
+        let quarter_turn = scalar::div(scalar::FRAC_PI_2.sat_mul(scalar::HALF), dt);
         self.def.max_angular_speed.min(quarter_turn)
     }
 }
@@ -243,8 +250,8 @@ fn effective_mass(
     let (rda, rdb) = (ra.cross(d), rb.cross(d));
     let k = ma
         .saturating_add(mb)
-        .saturating_add(ia.saturating_mul(rda.saturating_mul(rda)))
-        .saturating_add(ib.saturating_mul(rdb.saturating_mul(rdb)));
+        .saturating_add(ia.sat_mul(rda.sat_mul(rda)))
+        .saturating_add(ib.sat_mul(rdb.sat_mul(rdb)));
     scalar::recip(k)
 }
 
@@ -263,14 +270,33 @@ fn apply(
     p: Vector2,
 ) {
     a.linear_velocity -= p * ma;
-    a.angular_velocity = a.angular_velocity.saturating_sub(ia.saturating_mul(ra.cross(p)));
+    a.angular_velocity = a.angular_velocity.saturating_sub(ia.sat_mul(ra.cross(p)));
     b.linear_velocity += p * mb;
-    b.angular_velocity = b.angular_velocity.saturating_add(ib.saturating_mul(rb.cross(p)));
+    b.angular_velocity = b.angular_velocity.saturating_add(ib.sat_mul(rb.cross(p)));
+}
+
+/// Relative velocity of the contact point along a direction, from the
+/// precomputed arms: (vB − vA)·d + ωB·(rB × d) − ωA·(rA × d).
+#[inline(always)]
+fn relative_speed(a: &Body, b: &Body, d: Vector2, r: [Scalar; 2]) -> Scalar {
+    (b.linear_velocity - a.linear_velocity)
+        .dot(d)
+        .saturating_add(b.angular_velocity.sat_mul(r[1]))
+        .saturating_sub(a.angular_velocity.sat_mul(r[0]))
+}
+
+/// Applies an impulse of magnitude `lambda` along the direction whose
+/// precomputed per-mass vectors are `m` and inertia-scaled arms are `ir`.
+#[inline(always)]
+fn apply_along(a: &mut Body, b: &mut Body, m: [Vector2; 2], ir: [Scalar; 2], lambda: Scalar) {
+    a.linear_velocity -= m[0] * lambda;
+    a.angular_velocity = a.angular_velocity.saturating_sub(ir[0].sat_mul(lambda));
+    b.linear_velocity += m[1] * lambda;
+    b.angular_velocity = b.angular_velocity.saturating_add(ir[1].sat_mul(lambda));
 }
 
 /// One pass over one arbiter: normal constraints, then friction.
 fn solve_one(arb: &mut Arbiter, a: &mut Body, b: &mut Body, params: &StepParams, use_bias: bool) {
-    let ([ma, mb], [ia, ib]) = (arb.inv_mass, arb.inv_inertia);
     let n = arb.normal;
     let soft = if arb.static_pair { params.static_soft } else { params.soft };
     let count = usize::from(arb.count);
@@ -281,36 +307,36 @@ fn solve_one(arb: &mut Arbiter, a: &mut Body, b: &mut Body, params: &StepParams,
         let s = d.dot(n).saturating_add(cp.separation);
         let (bias, mass_scale, impulse_scale) = if s > ZERO {
             // Speculative: allow closing the gap within this sub-step, no more.
-            (s.saturating_mul(params.inv_h), scalar::ONE, ZERO)
+            (s.sat_mul(params.inv_h), scalar::ONE, ZERO)
         } else if use_bias {
-            let push = s.saturating_mul(soft.bias_rate).max(params.push_speed.saturating_neg());
+            let push = s.sat_mul(soft.bias_rate).max(params.push_speed.saturating_neg());
             (push, soft.mass_scale, soft.impulse_scale)
         } else {
             (ZERO, scalar::ONE, ZERO)
         };
-        let vn = (b.velocity_at_offset(cp.anchor_b) - a.velocity_at_offset(cp.anchor_a)).dot(n);
+        let vn = relative_speed(a, b, n, cp.rn);
         let impulse = cp
             .normal_mass
-            .saturating_mul(mass_scale)
-            .saturating_mul(vn.saturating_add(bias))
+            .sat_mul(mass_scale)
+            .sat_mul(vn.saturating_add(bias))
             .saturating_neg()
-            .saturating_sub(impulse_scale.saturating_mul(cp.normal_impulse));
+            .saturating_sub(impulse_scale.sat_mul(cp.normal_impulse));
         let new = cp.normal_impulse.saturating_add(impulse).max(ZERO);
         let applied = new.saturating_sub(cp.normal_impulse);
         cp.normal_impulse = new;
         cp.max_normal_impulse = cp.max_normal_impulse.max(applied);
         cp.total_normal_impulse = cp.total_normal_impulse.saturating_add(applied);
-        apply(a, b, ma, ia, mb, ib, cp.anchor_a, cp.anchor_b, n * applied);
+        apply_along(a, b, arb.n_m, cp.irn, applied);
     }
     let t = n.right_perp();
     let mu = arb.friction;
     for cp in arb.points.iter_mut().take(count) {
-        let vt = (b.velocity_at_offset(cp.anchor_b) - a.velocity_at_offset(cp.anchor_a)).dot(t);
-        let impulse = cp.tangent_mass.saturating_mul(vt).saturating_neg();
-        let max_f = mu.saturating_mul(cp.normal_impulse);
+        let vt = relative_speed(a, b, t, cp.rt);
+        let impulse = cp.tangent_mass.sat_mul(vt).saturating_neg();
+        let max_f = mu.sat_mul(cp.normal_impulse);
         let new = scalar::clamp(cp.tangent_impulse.saturating_add(impulse), max_f.saturating_neg(), max_f);
         let applied = new.saturating_sub(cp.tangent_impulse);
         cp.tangent_impulse = new;
-        apply(a, b, ma, ia, mb, ib, cp.anchor_a, cp.anchor_b, t * applied);
+        apply_along(a, b, arb.t_m, cp.irt, applied);
     }
 }

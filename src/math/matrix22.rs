@@ -1,6 +1,7 @@
 //! `Matrix22`: a 2×2 matrix, used for point constraints (pivots, welds) and block
 //! solvers.
 
+use crate::math::scalar::ScalarExt as _;
 use core::ops::{Add, Mul};
 
 use super::scalar::{self, Scalar, ZERO};
@@ -59,10 +60,10 @@ impl Matrix22 {
         let inv = scalar::recip(det);
         let (a, b, c, d) = (self.col1.x, self.col2.x, self.col1.y, self.col2.y);
         Some(Self::new(
-            d.saturating_mul(inv),
-            b.saturating_neg().saturating_mul(inv),
-            c.saturating_neg().saturating_mul(inv),
-            a.saturating_mul(inv),
+            d.sat_mul(inv),
+            b.saturating_neg().sat_mul(inv),
+            c.saturating_neg().sat_mul(inv),
+            a.sat_mul(inv),
         ))
     }
 
@@ -74,8 +75,8 @@ impl Matrix22 {
             return None;
         }
         let (a11, a12, a21, a22) = (self.col1.x, self.col2.x, self.col1.y, self.col2.y);
-        let x = a22.saturating_mul(b.x).saturating_sub(a12.saturating_mul(b.y));
-        let y = a11.saturating_mul(b.y).saturating_sub(a21.saturating_mul(b.x));
+        let x = a22.sat_mul(b.x).saturating_sub(a12.sat_mul(b.y));
+        let y = a11.sat_mul(b.y).saturating_sub(a21.sat_mul(b.x));
         Some(Vector2::new(scalar::div(x, det), scalar::div(y, det)))
     }
 }

@@ -10,6 +10,7 @@
 use super::scalar::{Scalar, ONE, ZERO};
 use super::trig;
 use super::vector2::Vector2;
+use crate::math::scalar::ScalarExt as _;
 
 /// A rotation as a unit complex number: `c = cos θ`, `s = sin θ`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -54,8 +55,8 @@ impl Rot {
     #[must_use]
     pub fn rotate(self, v: Vector2) -> Vector2 {
         Vector2::new(
-            self.c.saturating_mul(v.x).saturating_sub(self.s.saturating_mul(v.y)),
-            self.s.saturating_mul(v.x).saturating_add(self.c.saturating_mul(v.y)),
+            self.c.sat_mul(v.x).saturating_sub(self.s.sat_mul(v.y)),
+            self.s.sat_mul(v.x).saturating_add(self.c.sat_mul(v.y)),
         )
     }
 
@@ -64,8 +65,8 @@ impl Rot {
     #[must_use]
     pub fn inv_rotate(self, v: Vector2) -> Vector2 {
         Vector2::new(
-            self.c.saturating_mul(v.x).saturating_add(self.s.saturating_mul(v.y)),
-            self.c.saturating_mul(v.y).saturating_sub(self.s.saturating_mul(v.x)),
+            self.c.sat_mul(v.x).saturating_add(self.s.sat_mul(v.y)),
+            self.c.sat_mul(v.y).saturating_sub(self.s.sat_mul(v.x)),
         )
     }
 
@@ -74,8 +75,8 @@ impl Rot {
     #[must_use]
     pub fn compose(self, o: Self) -> Self {
         Self {
-            c: self.c.saturating_mul(o.c).saturating_sub(self.s.saturating_mul(o.s)),
-            s: self.s.saturating_mul(o.c).saturating_add(self.c.saturating_mul(o.s)),
+            c: self.c.sat_mul(o.c).saturating_sub(self.s.sat_mul(o.s)),
+            s: self.s.sat_mul(o.c).saturating_add(self.c.sat_mul(o.s)),
         }
     }
 
@@ -99,8 +100,8 @@ impl Rot {
     /// rotation whatever it is.
     #[must_use]
     pub fn integrate(self, delta: Scalar) -> Self {
-        let c = self.c.saturating_sub(self.s.saturating_mul(delta));
-        let s = self.s.saturating_add(self.c.saturating_mul(delta));
+        let c = self.c.saturating_sub(self.s.sat_mul(delta));
+        let s = self.s.saturating_add(self.c.sat_mul(delta));
         Self { c, s }.normalized()
     }
 
@@ -172,7 +173,7 @@ mod tests {
         let step = Scalar::lit("0.05");
         for _ in 0..10_000 {
             q = q.integrate(step);
-            let len2 = q.c.saturating_mul(q.c).saturating_add(q.s.saturating_mul(q.s));
+            let len2 = q.c.sat_mul(q.c).saturating_add(q.s.sat_mul(q.s));
             assert!((len2.saturating_sub(ONE)).abs() < Scalar::lit("0.000000005"));
         }
     }

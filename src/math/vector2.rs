@@ -6,6 +6,7 @@
 //! design (world bounds, speed limits, validated sizes); saturation is the
 //! backstop, not the mechanism.
 
+use crate::math::scalar::ScalarExt as _;
 use core::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 
 use super::scalar::{self, Scalar, ZERO};
@@ -87,7 +88,7 @@ impl Vector2 {
     #[inline]
     #[must_use]
     pub fn dot(self, o: Self) -> Scalar {
-        self.x.saturating_mul(o.x).saturating_add(self.y.saturating_mul(o.y))
+        self.x.sat_mul(o.x).saturating_add(self.y.sat_mul(o.y))
     }
 
     /// 2D cross product of two vectors, `a × b = a.x·b.y − a.y·b.x` (a scalar: the z
@@ -95,14 +96,14 @@ impl Vector2 {
     #[inline]
     #[must_use]
     pub fn cross(self, o: Self) -> Scalar {
-        self.x.saturating_mul(o.y).saturating_sub(self.y.saturating_mul(o.x))
+        self.x.sat_mul(o.y).saturating_sub(self.y.sat_mul(o.x))
     }
 
     /// Cross product of a vector and a scalar (z-axis), `v × s = (s·v.y, −s·v.x)`.
     #[inline]
     #[must_use]
     pub fn cross_vs(self, s: Scalar) -> Self {
-        Self { x: s.saturating_mul(self.y), y: s.saturating_mul(self.x).saturating_neg() }
+        Self { x: s.sat_mul(self.y), y: s.sat_mul(self.x).saturating_neg() }
     }
 
     /// Cross product of a scalar (z-axis) and a vector, `s × v = (−s·v.y, s·v.x)`:
@@ -110,7 +111,7 @@ impl Vector2 {
     #[inline]
     #[must_use]
     pub fn cross_sv(s: Scalar, v: Self) -> Self {
-        Self { x: s.saturating_mul(v.y).saturating_neg(), y: s.saturating_mul(v.x) }
+        Self { x: s.sat_mul(v.y).saturating_neg(), y: s.sat_mul(v.x) }
     }
 
     /// The vector rotated by +90°: `(−y, x)`.
@@ -270,7 +271,7 @@ impl Mul<Scalar> for Vector2 {
     type Output = Self;
     #[inline]
     fn mul(self, s: Scalar) -> Self {
-        Self::new(self.x.saturating_mul(s), self.y.saturating_mul(s))
+        Self::new(self.x.sat_mul(s), self.y.sat_mul(s))
     }
 }
 
