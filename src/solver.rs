@@ -179,14 +179,23 @@ impl World<'_> {
         }
     }
 
+    /// One pass over every solved contact. The biased pass runs in pair order and
+    /// the relax pass in reverse (symmetric Gauss-Seidel): a one-way sweep favours
+    /// the bodies it visits first, which makes a symmetric pyramid creep sideways.
     fn solve_contacts(&mut self, params: &StepParams, use_bias: bool) {
         let World { bodies, contacts, .. } = self;
-        for arb in contacts.live_mut() {
-            if !arb.solve {
-                continue;
+        let live = contacts.live_mut();
+        let mut visit = |arb: &mut Arbiter| {
+            if arb.solve {
+                if let Some((a, b)) = bodies.get2_at_mut(arb.body_a.index(), arb.body_b.index()) {
+                    solve_one(arb, a, b, params, use_bias);
+                }
             }
-            let Some((a, b)) = bodies.get2_at_mut(arb.body_a.index(), arb.body_b.index()) else { continue };
-            solve_one(arb, a, b, params, use_bias);
+        };
+        if use_bias {
+            live.iter_mut().for_each(&mut visit);
+        } else {
+            live.iter_mut().rev().for_each(&mut visit);
         }
     }
 
