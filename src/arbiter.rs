@@ -104,6 +104,11 @@ pub struct Arbiter {
     /// (derived, per step).
     pub(crate) n_m: [Vector2; 2],
     pub(crate) t_m: [Vector2; 2],
+    /// Inverse of the 2×2 normal mass matrix of a two-point manifold, by columns
+    /// (derived); `None` when one point or ill-conditioned.
+    pub(crate) block: Option<[Scalar; 4]>,
+    /// Off-diagonal entry of that matrix (derived).
+    pub(crate) k12: Scalar,
 }
 
 impl Arbiter {
@@ -144,6 +149,8 @@ impl Arbiter {
         static_pair: false,
         n_m: [Vector2::ZERO; 2],
         t_m: [Vector2::ZERO; 2],
+        block: None,
+        k12: ZERO,
     };
 
     /// The canonical key of the pair: (lower body slot, higher body slot).
