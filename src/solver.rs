@@ -32,7 +32,7 @@
 //! collision detection runs inside the loop. Everything iterates in the canonical
 //! arbiter order and body-slot order.
 
-use crate::arbiter::Arbiter;
+use crate::arbiter::{Arbiter, ContactPoint};
 use crate::body::{Body, BodyType};
 use crate::math::scalar::ScalarExt as _;
 use crate::math::scalar::{self, Scalar, ZERO};
@@ -344,8 +344,8 @@ fn solve_block(arb: &mut Arbiter, a: &mut Body, b: &mut Body, inv: [Scalar; 4], 
     let k11 = scalar::recip(p1.normal_mass);
     let k22 = scalar::recip(p2.normal_mass);
     let k12 = arb.k12;
-    let r1 = relative_speed(a, b, n, p1.rn).saturating_add(bias1);
-    let r2 = relative_speed(a, b, n, p2.rn).saturating_add(bias2);
+    let (v1, v2) = (relative_speed(a, b, n, p1.rn), relative_speed(a, b, n, p2.rn));
+    let (r1, r2) = (v1.saturating_add(bias1), v2.saturating_add(bias2));
     // Each point keeps its own softness (a speculative point is rigid).
     let (keep1, keep2) = (scalar::ONE.saturating_sub(is1), scalar::ONE.saturating_sub(is2));
     let q1 = ms1.sat_mul(r1).saturating_sub(keep1.sat_mul(k11.sat_mul(l1).saturating_add(k12.sat_mul(l2))));
@@ -375,7 +375,8 @@ fn solve_block(arb: &mut Arbiter, a: &mut Body, b: &mut Body, inv: [Scalar; 4], 
         }
     };
     let Some((x1, x2)) = x else { return false };
-    for (cp, new) in arb.points.iter_mut().zip([x1, x2]) {
+    for ((cp, new), vn) in arb.points.iter_mut().zip([x1, x2]).zip([v1, v2]) {
+        note_approach(cp, vn, new);
         let applied = new.saturating_sub(cp.normal_impulse);
         cp.normal_impulse = new;
         cp.max_normal_impulse = cp.max_normal_impulse.max(applied);
@@ -383,6 +384,18 @@ fn solve_block(arb: &mut Arbiter, a: &mut Body, b: &mut Body, inv: [Scalar; 4], 
         apply_along(a, b, arb.n_m, cp.irn, applied);
     }
     true
+}
+
+/// Keeps the fastest approach a pushing point has seen this step as its
+/// restitution reference. The speed at the start of the step is not enough: with
+/// speculative contacts a falling body meets the ground part-way through the step,
+/// after gravity added up to g·dt more, and bouncing off the earlier speed would
+/// lose that (a 2 % lower rebound from 10 m).
+#[inline(always)]
+fn note_approach(cp: &mut ContactPoint, vn: Scalar, new_impulse: Scalar) {
+    if new_impulse > ZERO && vn < cp.relative_velocity {
+        cp.relative_velocity = vn;
+    }
 }
 
 /// A contact point's (bias velocity, mass scale, impulse scale) for one pass.
@@ -458,6 +471,7 @@ fn solve_one(
                 .saturating_neg()
                 .saturating_sub(impulse_scale.sat_mul(cp.normal_impulse));
             let new = cp.normal_impulse.saturating_add(impulse).max(ZERO);
+            note_approach(cp, vn, new);
             let applied = new.saturating_sub(cp.normal_impulse);
             cp.normal_impulse = new;
             cp.max_normal_impulse = cp.max_normal_impulse.max(applied);
