@@ -359,3 +359,58 @@ fn removing_a_body_in_a_post_step_callback_ends_its_arbiters() {
     assert_eq!(events.iter().filter(|e| matches!(e, Event::End(_))).count(), 1, "end on removal: {events:?}");
     w.step(s(DT)).expect("the world steps on");
 }
+
+fn bouncy(a: &mut Arbiter, _: &mut CallbackContext<'_>) -> bool {
+    a.set_restitution(s(1.0));
+    true
+}
+
+fn slippery(a: &mut Arbiter, _: &mut CallbackContext<'_>) -> bool {
+    a.set_friction(s(0.0));
+    true
+}
+
+#[test]
+fn pre_solve_changes_to_restitution_and_friction_are_honoured() {
+    // A dead ball (e = 0) bounces when pre_solve raises the pair's restitution to 1.
+    let (mut w, _) = floor_world(2);
+    w.add_collision_handler(1, 2, FnHandler { pre_solve: Some(bouncy), ..FnHandler::default() }).expect("h");
+    let ball = w.add_body(BodyDef::circle(s(0.5)).position(v(0.0, 5.5)).collision_level(1)).expect("ball");
+    let mut peak_after_bounce = f64::MIN;
+    let mut bounced = false;
+    for _ in 0..180 {
+        w.step(s(DT)).expect("step");
+        let b = w.body(ball).expect("ball");
+        bounced |= b.linear_velocity().y > s(1.0);
+        if bounced {
+            peak_after_bounce = peak_after_bounce.max(b.position().y.to_num::<f64>());
+        }
+    }
+    // Dropped from 5 m above the floor (bottom at 5.0): an elastic bounce climbs back near it.
+    assert!(bounced && peak_after_bounce - 0.5 > 4.5, "peak {peak_after_bounce}");
+
+    // A box on a 0.25 rad ramp with μ = 0.6 sticks, unless pre_solve zeroes the friction.
+    for (handler, expect_slide) in [(None, false), (Some(slippery as arphysics::handler::ArbiterFilterFn), true)] {
+        let (mut w, _) = floor_world(0);
+        let ramp = w.add_path(PolygonPath::rectangle(s(30.0), s(1.0)).expect("ramp")).expect("p");
+        let angle = s(0.25);
+        w.add_body(BodyDef::polygon(ramp).position(v(0.0, 10.0)).angle(angle).static_body().collision_level(2))
+            .expect("ramp");
+        let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("p");
+        // On the ramp's upper face: 1 m above its centre line along the normal.
+        let (sin, cos) = (0.25f64.sin(), 0.25f64.cos());
+        let b = w
+            .add_body(BodyDef::polygon(unit).position(v(-sin * 1.0, 10.0 + cos * 1.0)).angle(angle).collision_level(1))
+            .expect("box");
+        if let Some(f) = handler {
+            w.add_collision_handler(1, 2, FnHandler { pre_solve: Some(f), ..FnHandler::default() }).expect("h");
+        }
+        let start = w.body(b).expect("box").position();
+        for _ in 0..60 {
+            w.step(s(DT)).expect("step");
+        }
+        let moved = (w.body(b).expect("box").position() - start).length().to_num::<f64>();
+        // Frictionless: ½·g·sin θ·t² ≈ 1.24 m in 1 s.
+        assert_eq!(moved > 0.5, expect_slide, "moved {moved} m (handler: {})", handler.is_some());
+    }
+}
