@@ -390,20 +390,30 @@ fn pre_solve_changes_to_restitution_and_friction_are_honoured() {
     assert!(bounced && peak_after_bounce - 0.5 > 4.5, "peak {peak_after_bounce}");
 
     // A box on a 0.25 rad ramp with μ = 0.6 sticks, unless pre_solve zeroes the friction.
-    for (handler, expect_slide) in [(None, false), (Some(slippery as arphysics::handler::ArbiterFilterFn), true)] {
+    for (handler, expect_slide) in
+        [(None, false), (Some(slippery as arphysics::handler::ArbiterFilterFn), true)]
+    {
         let (mut w, _) = floor_world(0);
         let ramp = w.add_path(PolygonPath::rectangle(s(30.0), s(1.0)).expect("ramp")).expect("p");
         let angle = s(0.25);
-        w.add_body(BodyDef::polygon(ramp).position(v(0.0, 10.0)).angle(angle).static_body().collision_level(2))
-            .expect("ramp");
+        w.add_body(
+            BodyDef::polygon(ramp).position(v(0.0, 10.0)).angle(angle).static_body().collision_level(2),
+        )
+        .expect("ramp");
         let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("p");
         // On the ramp's upper face: 1 m above its centre line along the normal.
         let (sin, cos) = (0.25f64.sin(), 0.25f64.cos());
         let b = w
-            .add_body(BodyDef::polygon(unit).position(v(-sin * 1.0, 10.0 + cos * 1.0)).angle(angle).collision_level(1))
+            .add_body(
+                BodyDef::polygon(unit)
+                    .position(v(-sin * 1.0, 10.0 + cos * 1.0))
+                    .angle(angle)
+                    .collision_level(1),
+            )
             .expect("box");
         if let Some(f) = handler {
-            w.add_collision_handler(1, 2, FnHandler { pre_solve: Some(f), ..FnHandler::default() }).expect("h");
+            w.add_collision_handler(1, 2, FnHandler { pre_solve: Some(f), ..FnHandler::default() })
+                .expect("h");
         }
         let start = w.body(b).expect("box").position();
         for _ in 0..60 {
