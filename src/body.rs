@@ -272,6 +272,30 @@ pub struct Body {
 }
 
 impl Body {
+    /// A static body at the origin that is not in any world: the other side of a
+    /// constraint to a fixed world point.
+    pub(crate) fn ground() -> Self {
+        Self {
+            position: Vector2::ZERO,
+            rotation: Rot::IDENTITY,
+            linear_velocity: Vector2::ZERO,
+            angular_velocity: ZERO,
+            shape: Shape::Circle { radius: ZERO },
+            body_type: BodyType::Static,
+            mass: MassData::STATIC,
+            friction: ZERO,
+            restitution: ZERO,
+            collision_groups: 0,
+            collision_level: 0,
+            user_data: 0,
+            out_of_bounds: false,
+            radius: ZERO,
+            aabb: Rect { min: Vector2::ZERO, max: Vector2::ZERO },
+            pending_v: Vector2::ZERO,
+            pending_w: ZERO,
+        }
+    }
+
     /// Position of the centre of mass (m).
     #[inline]
     #[must_use]

@@ -105,6 +105,7 @@ pub mod arena;
 pub mod body;
 pub mod collide;
 pub mod collision;
+pub mod constraint;
 pub mod error;
 pub mod force;
 pub mod geometry;
@@ -120,6 +121,9 @@ pub use arbiter::{Arbiter, ArbiterState, ContactPoint};
 pub use arena::{Handle, Slot};
 pub use body::{Body, BodyDef, BodyHandle, BodyType, MassSpec, PathHandle, Shape};
 pub use collision::Index;
+pub use constraint::{
+    Constraint, ConstraintHandle, Joint, JointDef, JointHandle, JointKind, MaxTorque, Motor,
+};
 pub use error::Error;
 pub use force::{
     ForceGenerator, Generator, GravityForceGenerator, GravityToPointForceGenerator, LinearForceGenerator,
@@ -129,7 +133,9 @@ pub use geometry::{MassData, PolygonPath};
 pub use handler::{CallbackContext, CollisionHandler, FnHandler, Handler, PostStepFn};
 pub use index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};
 pub use math::{Matrix22, Rect, Rot, Scalar, Transform, Vector2};
-pub use world::{Capacities, GeneratorHandle, StepReport, Storage, World, WorldBuffers, WorldDef};
+pub use world::{
+    Capacities, GeneratorHandle, JointBreakFn, StepReport, Storage, World, WorldBuffers, WorldDef,
+};
 
 /// The longest time step [`World::step`] accepts: 0.25 s. Longer steps are never
 /// physically meaningful and would let fast bodies move too far in one step.

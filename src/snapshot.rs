@@ -127,6 +127,84 @@ pub(crate) fn encode_arbiter(s: &mut impl Sink, a: &Arbiter) {
     }
 }
 
+/// Writes one joint: its definition and the impulses that warm-start it.
+pub(crate) fn encode_joint(s: &mut impl Sink, j: &crate::constraint::Joint) {
+    use crate::constraint::{JointKind, MaxTorque};
+    let d = &j.def;
+    s.u32(d.body_a.index());
+    s.u32(d.body_a.generation());
+    match d.body_b {
+        Some(b) => {
+            s.u8(1);
+            s.u32(b.index());
+            s.u32(b.generation());
+        }
+        None => s.u8(0),
+    }
+    s.vector(d.anchor_a);
+    s.vector(d.anchor_b);
+    match d.kind {
+        JointKind::Spring { stiffness, rest_length } => {
+            s.u8(0);
+            s.scalar(stiffness);
+            s.scalar(rest_length);
+        }
+        JointKind::DampedSpring { stiffness, damping, rest_length } => {
+            s.u8(1);
+            s.scalar(stiffness);
+            s.scalar(damping);
+            s.scalar(rest_length);
+        }
+        JointKind::Rod { length } => {
+            s.u8(2);
+            s.scalar(length);
+        }
+        JointKind::Rope { max_length } => {
+            s.u8(3);
+            s.scalar(max_length);
+        }
+        JointKind::Pivot { limits, motor } => {
+            s.u8(4);
+            match limits {
+                Some((lo, hi)) => {
+                    s.u8(1);
+                    s.scalar(lo);
+                    s.scalar(hi);
+                }
+                None => s.u8(0),
+            }
+            match motor {
+                Some(m) => {
+                    s.u8(1);
+                    s.scalar(m.speed);
+                    match m.max_torque {
+                        MaxTorque::Limited(t) => {
+                            s.u8(0);
+                            s.scalar(t);
+                        }
+                        MaxTorque::Unlimited => s.u8(1),
+                    }
+                }
+                None => s.u8(0),
+            }
+        }
+        JointKind::Weld => s.u8(5),
+    }
+    match d.break_impulse {
+        Some(x) => {
+            s.u8(1);
+            s.scalar(x);
+        }
+        None => s.u8(0),
+    }
+    s.rot(j.reference);
+    s.vector(j.impulse);
+    s.scalar(j.angular_impulse);
+    s.scalar(j.motor_impulse);
+    s.scalar(j.limit_impulse);
+    s.scalar(j.step_impulse);
+}
+
 /// Writes an arena's allocator state and each used slot (generation, free-list
 /// link, and the value through `f` when live), so handles and slot reuse survive
 /// a round trip.

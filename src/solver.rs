@@ -40,11 +40,11 @@ use crate::math::Vector2;
 use crate::world::World;
 
 /// Soft-constraint coefficients for one sub-step length (Box2D's `b2Softness`).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Softness {
-    bias_rate: Scalar,
-    mass_scale: Scalar,
-    impulse_scale: Scalar,
+    pub(crate) bias_rate: Scalar,
+    pub(crate) mass_scale: Scalar,
+    pub(crate) impulse_scale: Scalar,
 }
 
 impl Softness {
@@ -71,7 +71,7 @@ struct StepParams {
 }
 
 /// Inverse mass and inertia a body contributes to a contact (0 unless dynamic).
-fn inverse_mass(b: &Body) -> (Scalar, Scalar) {
+pub(crate) fn inverse_mass(b: &Body) -> (Scalar, Scalar) {
     if b.body_type == BodyType::Dynamic {
         (b.mass.inv_mass, b.mass.inv_inertia)
     } else {
@@ -96,6 +96,7 @@ impl World<'_> {
             push_speed: self.def.contact_push_speed,
         };
         self.prepare_contacts();
+        self.prepare_constraints(dt, h);
         // Each sub-step gets 1/n of the generators' velocity change.
         for (_, b) in self.bodies.iter_mut() {
             b.pending_v = b.pending_v * inv_n;
@@ -109,7 +110,10 @@ impl World<'_> {
                     b.angular_velocity = b.angular_velocity.saturating_add(b.pending_w);
                 }
             }
+            self.for_each_joint(|j, a, b| j.warm_start(a, b));
             self.warm_start();
+            self.for_each_joint(|j, a, b| j.solve(a, b, h, true));
+            self.solve_user_constraints(h);
             self.solve_contacts(&params, true, false, false);
             for (_, b) in self.bodies.iter_mut() {
                 if b.is_awake_mover() {
@@ -124,13 +128,91 @@ impl World<'_> {
                 }
             }
             // Relax: a symmetric Gauss-Seidel pair of sweeps, forward then back.
+            self.for_each_joint_in(true, |j, a, b| j.solve(a, b, h, false));
             self.solve_contacts(&params, false, substep % 2 == 1, false);
             self.solve_contacts(&params, false, substep % 2 == 0, true);
         }
         self.apply_restitution();
+        for (_, j) in self.joints.iter_mut() {
+            j.broken = j.finish_step();
+        }
         for (_, b) in self.bodies.iter_mut() {
             b.pending_v = Vector2::ZERO;
             b.pending_w = ZERO;
+        }
+    }
+
+    /// Runs `f` on every joint with its two bodies, in joint-slot order. A joint
+    /// to a world point gets a static stand-in body for B.
+    fn for_each_joint(&mut self, f: impl FnMut(&mut crate::constraint::Joint, &mut Body, &mut Body)) {
+        self.for_each_joint_in(false, f);
+    }
+
+    /// [`World::for_each_joint`] in slot order or in `reverse`.
+    fn for_each_joint_in(
+        &mut self,
+        reverse: bool,
+        mut f: impl FnMut(&mut crate::constraint::Joint, &mut Body, &mut Body),
+    ) {
+        let World { bodies, joints, .. } = self;
+        let used = joints.slots_used();
+        for k in 0..used {
+            let i = if reverse { used.saturating_sub(1).saturating_sub(k) } else { k };
+            let Some(j) = joints.get_at_mut(i) else { continue };
+            let ia = j.def.body_a.index();
+            match j.def.body_b {
+                Some(hb) => {
+                    if let Some((a, b)) = bodies.get2_at_mut(ia, hb.index()) {
+                        f(j, a, b);
+                    }
+                }
+                None => {
+                    let mut ground = crate::constraint::ground();
+                    ground.position = Vector2::ZERO;
+                    if let Some(a) = bodies.get_at_mut(ia) {
+                        f(j, a, &mut ground);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Once per step: joint masses and softness; the game's `prepare`.
+    fn prepare_constraints(&mut self, dt: Scalar, h: Scalar) {
+        let World { bodies, joints, constraints, .. } = self;
+        let ground = crate::constraint::ground();
+        for (_, j) in joints.iter_mut() {
+            let b = j.def.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
+            if let Some(a) = bodies.get(j.def.body_a) {
+                j.prepare(a, b, h);
+            }
+        }
+        for (_, c) in constraints.iter_mut() {
+            let b = c.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
+            if let Some(a) = bodies.get(c.body_a) {
+                c.constraint.prepare(a, b, dt);
+            }
+        }
+    }
+
+    /// The game's constraints, once per sub-step, in registration order.
+    fn solve_user_constraints(&mut self, h: Scalar) {
+        let World { bodies, constraints, .. } = self;
+        for (_, c) in constraints.iter_mut() {
+            let ia = c.body_a.index();
+            match c.body_b {
+                Some(hb) => {
+                    if let Some((a, b)) = bodies.get2_at_mut(ia, hb.index()) {
+                        c.constraint.solve(a, b, h);
+                    }
+                }
+                None => {
+                    let mut ground = crate::constraint::ground();
+                    if let Some(a) = bodies.get_at_mut(ia) {
+                        c.constraint.solve(a, &mut ground, h);
+                    }
+                }
+            }
         }
     }
 

@@ -16,7 +16,9 @@
 //! 6. **limits**: speeds clamped to the world's maxima; bodies whose centre left the
 //!    bounds are frozen and reported; bounding boxes refreshed.
 //! 7. **post_solve callbacks**, in canonical pair order.
-//! 8. **post-step callbacks**, once per key, in registration order, with
+//! 8. **broken joints** are removed, in joint-slot order, each handed to the
+//!    break callback.
+//! 9. **post-step callbacks**, once per key, in registration order, with
 //!    `&mut World`: the safe place to remove bodies. Callbacks registered while
 //!    these run (or outside a step) run after the next step.
 //!
@@ -47,8 +49,14 @@ impl World<'_> {
         let left_bounds = self.enforce_limits(dt);
         self.post_solve_callbacks();
         self.step_count = self.step_count.wrapping_add(1);
+        let joints_broken = self.remove_broken_joints();
         let post_step_callbacks = self.run_post_step_callbacks();
-        Ok(StepReport { left_bounds, arbiters: self.contacts.arbiter_count as u32, post_step_callbacks })
+        Ok(StepReport {
+            left_bounds,
+            arbiters: self.contacts.arbiter_count as u32,
+            post_step_callbacks,
+            joints_broken,
+        })
     }
 
     /// Runs the generators and turns their effect into a pending velocity change
@@ -108,6 +116,25 @@ impl World<'_> {
             }
         }
         left
+    }
+
+    /// Removes the joints that broke this step, in slot order, handing each to
+    /// the break callback. Returns how many broke.
+    fn remove_broken_joints(&mut self) -> u32 {
+        let mut broken = 0u32;
+        for i in 0..self.joints.slots_used() {
+            if !self.joints.get_at(i).is_some_and(|j| j.broken) {
+                continue;
+            }
+            let Some(h) = self.joints.handle_at(i) else { continue };
+            if let Some(joint) = self.joints.remove(h) {
+                broken = broken.saturating_add(1);
+                if let Some(f) = self.break_callback {
+                    f(self, h, joint);
+                }
+            }
+        }
+        broken
     }
 
     fn run_post_step_callbacks(&mut self) -> u32 {

@@ -13,6 +13,10 @@ use crate::arbiter::Arbiter;
 use crate::arena::{Arena, Handle, Slot};
 use crate::body::{Body, BodyDef, BodyHandle, BodyType, MassSpec, PathHandle, Shape};
 use crate::collision::{Contacts, Index};
+use crate::constraint::{
+    self, Constraint, ConstraintHandle, ConstraintMarker, Joint, JointDef, JointHandle, JointMarker,
+    UserConstraint, MAX_USER_CONSTRAINTS,
+};
 use crate::error::Error;
 use crate::force::Generator;
 use crate::geometry::circle::{circle_area, circle_unit_inertia};
@@ -152,6 +156,8 @@ pub struct Capacities {
     /// Candidate pairs per step and arbiters (pairs of bodies in contact, or kept
     /// for persistence). A stack needs about 2 per body, a dense pile about 4.
     pub contacts: usize,
+    /// Built-in joints.
+    pub joints: usize,
 }
 
 impl Default for Capacities {
@@ -161,11 +167,11 @@ impl Default for Capacities {
 }
 
 impl Capacities {
-    /// Room for `bodies` bodies, each with its own polygon path, and 4 contacts
-    /// per body.
+    /// Room for `bodies` bodies, each with its own polygon path, 4 contacts and
+    /// 2 joints per body.
     #[must_use]
     pub fn for_bodies(bodies: usize) -> Self {
-        Self { bodies, paths: bodies, contacts: bodies.saturating_mul(4) }
+        Self { bodies, paths: bodies, contacts: bodies.saturating_mul(4), joints: bodies.saturating_mul(2) }
     }
 }
 
@@ -185,6 +191,8 @@ pub struct Storage<'a> {
     pub arbiters: ManagedSlice<'a, Arbiter>,
     /// The arbiter buffer the next step writes into; same length as `arbiters`.
     pub arbiters_next: ManagedSlice<'a, Arbiter>,
+    /// Built-in joint slots.
+    pub joints: ManagedSlice<'a, Slot<Joint>>,
 }
 
 impl Storage<'_> {
@@ -209,15 +217,16 @@ impl Storage<'_> {
             pairs: ManagedSlice::Owned(plain(c.contacts, (0, 0))),
             arbiters: ManagedSlice::Owned(plain(c.contacts, Arbiter::EMPTY)),
             arbiters_next: ManagedSlice::Owned(plain(c.contacts, Arbiter::EMPTY)),
+            joints: ManagedSlice::Owned(buf(c.joints)),
         }
     }
 }
 
 /// Statically sized buffers for a world that needs no allocator: `BODIES` bodies
-/// and as many polygon paths, `CONTACTS` candidate pairs and arbiters. `new` is
-/// `const`, so the buffers can be a `static` (e.g. in a `static_cell::StaticCell`)
-/// or a local.
-pub struct WorldBuffers<const BODIES: usize, const CONTACTS: usize> {
+/// and as many polygon paths, `CONTACTS` candidate pairs and arbiters, `JOINTS`
+/// built-in joints (default 16). `new` is `const`, so the buffers can be a
+/// `static` (e.g. in a `static_cell::StaticCell`) or a local.
+pub struct WorldBuffers<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize = 16> {
     bodies: [Slot<Body>; BODIES],
     paths: [Slot<PolygonPath>; BODIES],
     proxies: [Proxy; BODIES],
@@ -225,9 +234,10 @@ pub struct WorldBuffers<const BODIES: usize, const CONTACTS: usize> {
     pairs: [(u32, u32); CONTACTS],
     arbiters: [Arbiter; CONTACTS],
     arbiters_next: [Arbiter; CONTACTS],
+    joints: [Slot<Joint>; JOINTS],
 }
 
-impl<const BODIES: usize, const CONTACTS: usize> WorldBuffers<BODIES, CONTACTS> {
+impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffers<BODIES, CONTACTS, JOINTS> {
     /// Empty buffers.
     #[must_use]
     pub const fn new() -> Self {
@@ -240,6 +250,7 @@ impl<const BODIES: usize, const CONTACTS: usize> WorldBuffers<BODIES, CONTACTS> 
             pairs: [(0, 0); CONTACTS],
             arbiters: [Arbiter::EMPTY; CONTACTS],
             arbiters_next: [Arbiter::EMPTY; CONTACTS],
+            joints: [Slot::EMPTY; JOINTS],
         }
     }
 
@@ -253,11 +264,14 @@ impl<const BODIES: usize, const CONTACTS: usize> WorldBuffers<BODIES, CONTACTS> 
             pairs: ManagedSlice::Borrowed(&mut self.pairs[..]),
             arbiters: ManagedSlice::Borrowed(&mut self.arbiters[..]),
             arbiters_next: ManagedSlice::Borrowed(&mut self.arbiters_next[..]),
+            joints: ManagedSlice::Borrowed(&mut self.joints[..]),
         }
     }
 }
 
-impl<const BODIES: usize, const CONTACTS: usize> Default for WorldBuffers<BODIES, CONTACTS> {
+impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> Default
+    for WorldBuffers<BODIES, CONTACTS, JOINTS>
+{
     fn default() -> Self {
         Self::new()
     }
@@ -273,7 +287,13 @@ pub struct StepReport {
     pub arbiters: u32,
     /// Post-step callbacks that ran after the step.
     pub post_step_callbacks: u32,
+    /// Breakable joints that broke this step (and were removed).
+    pub joints_broken: u32,
 }
+
+/// Called after a step for each joint that broke, with its former handle and the
+/// joint as it was.
+pub type JointBreakFn = for<'w> fn(&mut World<'w>, JointHandle, Joint);
 
 /// The simulation: bodies, shared polygon paths, force generators, and `step`.
 pub struct World<'a> {
@@ -286,6 +306,10 @@ pub struct World<'a> {
     pub(crate) handlers: HandlerTable<'a>,
     pub(crate) post_step: PostStepQueue,
     pub(crate) contacts: Contacts<'a>,
+    pub(crate) joints: Arena<'a, Joint, JointMarker>,
+    pub(crate) constraints:
+        Arena<'a, UserConstraint<'a>, ConstraintMarker, [Slot<UserConstraint<'a>>; MAX_USER_CONSTRAINTS]>,
+    pub(crate) break_callback: Option<JointBreakFn>,
     pub(crate) step_count: u64,
 }
 
@@ -324,6 +348,9 @@ impl<'a> World<'a> {
                 next: storage.arbiters_next,
                 arbiter_count: 0,
             },
+            joints: Arena::new(storage.joints),
+            constraints: Arena::inline(),
+            break_callback: None,
             step_count: 0,
         })
     }
@@ -483,7 +510,25 @@ impl<'a> World<'a> {
             return Err(Error::StaleHandle);
         }
         self.end_arbiters_of(h.index());
+        self.remove_constraints_of(h);
         self.bodies.remove(h).ok_or(Error::StaleHandle)
+    }
+
+    /// Removes every joint and game constraint attached to `h`.
+    fn remove_constraints_of(&mut self, h: BodyHandle) {
+        for i in 0..self.joints.slots_used() {
+            let attached =
+                self.joints.get_at(i).is_some_and(|j| j.def.body_a == h || j.def.body_b == Some(h));
+            if let (true, Some(jh)) = (attached, self.joints.handle_at(i)) {
+                self.joints.remove(jh);
+            }
+        }
+        for i in 0..self.constraints.slots_used() {
+            let attached = self.constraints.get_at(i).is_some_and(|c| c.body_a == h || c.body_b == Some(h));
+            if let (true, Some(ch)) = (attached, self.constraints.handle_at(i)) {
+                self.constraints.remove(ch);
+            }
+        }
     }
 
     /// The body behind `h`.
@@ -592,6 +637,96 @@ impl<'a> World<'a> {
         self.generators.get_mut(h).ok_or(Error::StaleHandle)
     }
 
+    // ---- constraints ---------------------------------------------------------
+
+    /// Adds a built-in joint (spring, damped spring, rod, rope, pivot, weld).
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`] for an unknown body; [`Error::InvalidOperation`] for a
+    /// joint between a body and itself or between two bodies that cannot move;
+    /// [`Error::OutOfRange`] for a negative stiffness or damping, a zero or huge
+    /// length, inverted angle limits, a negative torque limit or break impulse, or
+    /// an anchor more than 256 m from its body's centre; [`Error::OutsideBounds`]
+    /// for a world anchor outside the world; [`Error::CapacityFull`].
+    pub fn add_joint(&mut self, def: JointDef) -> Result<JointHandle, Error> {
+        let a = self.bodies.get(def.body_a).ok_or(Error::StaleHandle)?;
+        let b = match def.body_b {
+            Some(hb) => Some(self.bodies.get(hb).ok_or(Error::StaleHandle)?),
+            None => None,
+        };
+        constraint::validate(&def, a, b, self.def.bounds)?;
+        let ground = constraint::ground();
+        let joint = Joint::new(def, a, b.unwrap_or(&ground));
+        self.joints.insert(joint).map_err(|_| Error::CapacityFull { what: "joint" })
+    }
+
+    /// Removes a joint and returns it.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn remove_joint(&mut self, h: JointHandle) -> Result<Joint, Error> {
+        self.joints.remove(h).ok_or(Error::StaleHandle)
+    }
+
+    /// The joint behind `h`.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`] (also once a breakable joint broke).
+    pub fn joint(&self, h: JointHandle) -> Result<&Joint, Error> {
+        self.joints.get(h).ok_or(Error::StaleHandle)
+    }
+
+    /// The joint behind `h`, e.g. to change a pivot's motor.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn joint_mut(&mut self, h: JointHandle) -> Result<&mut Joint, Error> {
+        self.joints.get_mut(h).ok_or(Error::StaleHandle)
+    }
+
+    /// Every joint with its handle, in slot order (the order they are solved in).
+    pub fn joints(&self) -> impl Iterator<Item = (JointHandle, &Joint)> + '_ {
+        self.joints.iter()
+    }
+
+    /// Sets the function called after a step for each joint that broke.
+    pub fn set_joint_break_callback(&mut self, f: Option<JointBreakFn>) {
+        self.break_callback = f;
+    }
+
+    /// Adds a game constraint between `a` and `b` (or a fixed point when `b` is
+    /// `None`), borrowed or boxed: `Managed::Borrowed(&mut c)` /
+    /// `Managed::Owned(Box::new(c))`.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`]; [`Error::InvalidOperation`] for a body with itself;
+    /// [`Error::CapacityFull`] when
+    /// [`MAX_USER_CONSTRAINTS`](crate::constraint::MAX_USER_CONSTRAINTS) are in use.
+    pub fn add_constraint(
+        &mut self,
+        a: BodyHandle,
+        b: Option<BodyHandle>,
+        c: managed::Managed<'a, dyn Constraint + Send + 'a>,
+    ) -> Result<ConstraintHandle, Error> {
+        if !self.bodies.contains(a) || b.is_some_and(|b| !self.bodies.contains(b)) {
+            return Err(Error::StaleHandle);
+        }
+        if Some(a) == b {
+            return Err(Error::InvalidOperation { what: "a constraint between a body and itself" });
+        }
+        self.constraints
+            .insert(UserConstraint { body_a: a, body_b: b, constraint: c })
+            .map_err(|_| Error::CapacityFull { what: "constraint" })
+    }
+
+    /// Removes a game constraint.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn remove_constraint(&mut self, h: ConstraintHandle) -> Result<(), Error> {
+        self.constraints.remove(h).map(drop).ok_or(Error::StaleHandle)
+    }
+
     // ---- collisions ----------------------------------------------------------
 
     /// Replaces the spatial index (the manual's custom indexing system).
@@ -665,6 +800,7 @@ impl<'a> World<'a> {
         for arb in self.contacts.live() {
             snapshot::encode_arbiter(s, arb);
         }
+        snapshot::encode_arena(s, &self.joints, |s, j| snapshot::encode_joint(s, j));
     }
 }
 

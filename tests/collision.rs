@@ -279,7 +279,7 @@ fn a_full_pair_buffer_is_an_error_and_changes_nothing() {
     let bounds = Rect::from_corners(v(-100.0, -100.0), v(100.0, 100.0));
     let mut w = World::with_capacities(
         WorldDef::with_bounds(bounds),
-        arphysics::Capacities { bodies: 16, paths: 4, contacts: 2 },
+        arphysics::Capacities { bodies: 16, paths: 4, contacts: 2, joints: 0 },
     )
     .expect("world");
     for i in 0..4 {

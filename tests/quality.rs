@@ -52,9 +52,11 @@ fn world(bodies: usize, gravity: bool) -> World<'static> {
 
 fn world_with_contacts(bodies: usize, contacts: usize, gravity: bool) -> World<'static> {
     let bounds = Rect::from_corners(v(-1000.0, -1000.0), v(1000.0, 1000.0));
-    let mut w =
-        World::with_capacities(WorldDef::with_bounds(bounds), Capacities { bodies, paths: 8, contacts })
-            .expect("world");
+    let mut w = World::with_capacities(
+        WorldDef::with_bounds(bounds),
+        Capacities { bodies, paths: 8, contacts, joints: 0 },
+    )
+    .expect("world");
     if gravity {
         w.add_force_generator(GravityForceGenerator::new(v(0.0, -G))).expect("gravity");
     }

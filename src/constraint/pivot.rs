@@ -1,0 +1,129 @@
+//! Pivot (revolute) joint: a point constraint, optional angle limits, optional motor.
+
+use super::{anchors, apply_angular, apply_linear, Joint, MaxTorque, Motor};
+use crate::body::Body;
+use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
+use crate::math::{Matrix22, Vector2};
+
+pub(super) fn warm_start(j: &mut Joint, a: &mut Body, b: &mut Body) {
+    let (ra, rb, _) = anchors(j, a, b);
+    j.step_linear += j.impulse;
+    apply_linear(j, a, b, ra, rb, j.impulse);
+    let angular = j.motor_impulse.saturating_add(j.limit_impulse).saturating_sub(j.angular_impulse);
+    apply_angular(j, a, b, angular.sat_mul(orientation(j)));
+}
+
+/// The relative angle θB − θA measured from the angle at creation, in (−π, π].
+pub(super) fn relative_angle(j: &Joint, a: &Body, b: &Body) -> Scalar {
+    j.reference.inv_mul(a.rotation.inv_mul(b.rotation)).angle()
+}
+
+/// +1, or −1 for a joint to a fixed world point: there the limits and the motor
+/// act on the body's own angle and spin (θA, ωA), which is what a game means by
+/// "the wheel turns at 5 rad/s", rather than on θB − θA with the world as B.
+fn orientation(j: &Joint) -> Scalar {
+    if j.def.body_b.is_none() {
+        -scalar::ONE
+    } else {
+        scalar::ONE
+    }
+}
+
+/// 1 / (iA + iB): the inertia the pair presents to a relative rotation.
+pub(super) fn axial_mass(j: &Joint) -> Scalar {
+    scalar::recip(j.inv_inertia[0].saturating_add(j.inv_inertia[1]))
+}
+
+pub(super) fn solve(
+    j: &mut Joint,
+    a: &mut Body,
+    b: &mut Body,
+    limits: Option<(Scalar, Scalar)>,
+    motor: Option<Motor>,
+    h: Scalar,
+    use_bias: bool,
+) {
+    let axial = axial_mass(j);
+    let sign = orientation(j);
+    let relative_rate =
+        |a: &Body, b: &Body| b.angular_velocity.saturating_sub(a.angular_velocity).sat_mul(sign);
+    if let Some(m) = motor {
+        // Drive the relative spin towards the target; no position error, no bias.
+        let rate = relative_rate(a, b).saturating_sub(m.speed);
+        let impulse = axial.sat_mul(rate).saturating_neg();
+        let new = match m.max_torque {
+            MaxTorque::Limited(t) => {
+                let max = t.sat_mul(h);
+                scalar::clamp(j.motor_impulse.saturating_add(impulse), max.saturating_neg(), max)
+            }
+            MaxTorque::Unlimited => j.motor_impulse.saturating_add(impulse),
+        };
+        let applied = new.saturating_sub(j.motor_impulse);
+        j.motor_impulse = new;
+        apply_angular(j, a, b, applied.sat_mul(sign));
+    }
+    if let Some((lower, upper)) = limits {
+        let angle = relative_angle(j, a, b).sat_mul(sign);
+        // Lower limit: θ − lower ≥ 0, pushes θ up (impulse ≥ 0).
+        let c = angle.saturating_sub(lower);
+        let applied = limit_step(j, c, relative_rate(a, b), axial, h, use_bias, j.limit_impulse);
+        j.limit_impulse = j.limit_impulse.saturating_add(applied);
+        apply_angular(j, a, b, applied.sat_mul(sign));
+        // Upper limit: upper − θ ≥ 0, pushes θ down (stored as a positive impulse).
+        let c = upper.saturating_sub(angle);
+        let rate = relative_rate(a, b).saturating_neg();
+        let applied = limit_step(j, c, rate, axial, h, use_bias, j.angular_impulse);
+        j.angular_impulse = j.angular_impulse.saturating_add(applied);
+        apply_angular(j, a, b, applied.sat_mul(sign).saturating_neg());
+    }
+    solve_point(j, a, b, use_bias);
+}
+
+/// The change of a one-sided angular limit impulse (accumulated stays ≥ 0):
+/// speculative while inside the limit, soft when past it.
+fn limit_step(
+    j: &Joint,
+    c: Scalar,
+    rate: Scalar,
+    axial: Scalar,
+    h: Scalar,
+    use_bias: bool,
+    old: Scalar,
+) -> Scalar {
+    let (bias, mass_scale, impulse_scale) = if c > ZERO {
+        (c.sat_mul(scalar::recip(h)), scalar::ONE, ZERO)
+    } else if use_bias {
+        (c.sat_mul(j.soft.bias_rate), j.soft.mass_scale, j.soft.impulse_scale)
+    } else {
+        (ZERO, scalar::ONE, ZERO)
+    };
+    let impulse = axial
+        .sat_mul(mass_scale)
+        .sat_mul(rate.saturating_add(bias))
+        .saturating_neg()
+        .saturating_sub(impulse_scale.sat_mul(old));
+    let new = old.saturating_add(impulse).max(ZERO);
+    new.saturating_sub(old)
+}
+
+/// The point constraint shared with the weld joint: the anchors coincide.
+pub(super) fn solve_point(j: &mut Joint, a: &mut Body, b: &mut Body, use_bias: bool) {
+    let (ra, rb, d) = anchors(j, a, b);
+    let ([ma, mb], [ia, ib]) = (j.inv_mass, j.inv_inertia);
+    let m = ma.saturating_add(mb);
+    let k11 = m.saturating_add(ia.sat_mul(ra.y.sat_mul(ra.y))).saturating_add(ib.sat_mul(rb.y.sat_mul(rb.y)));
+    let k12 = ia.sat_mul(ra.x.sat_mul(ra.y)).saturating_add(ib.sat_mul(rb.x.sat_mul(rb.y))).saturating_neg();
+    let k22 = m.saturating_add(ia.sat_mul(ra.x.sat_mul(ra.x))).saturating_add(ib.sat_mul(rb.x.sat_mul(rb.x)));
+    let k = Matrix22::new(k11, k12, k12, k22);
+    let rate = b.velocity_at_offset(rb) - a.velocity_at_offset(ra);
+    let (bias, mass_scale, impulse_scale) = if use_bias {
+        (d * j.soft.bias_rate, j.soft.mass_scale, j.soft.impulse_scale)
+    } else {
+        (Vector2::ZERO, scalar::ONE, ZERO)
+    };
+    let Some(solved) = k.solve(rate + bias) else { return };
+    let impulse = -(solved * mass_scale) - j.impulse * impulse_scale;
+    j.impulse += impulse;
+    j.step_linear += impulse;
+    apply_linear(j, a, b, ra, rb, impulse);
+}

@@ -1,0 +1,63 @@
+//! Rod (fixed distance) and rope (maximum distance) between the anchors.
+
+use super::{anchors, apply_linear, Joint};
+use crate::body::Body;
+use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
+
+pub(super) fn warm_start(j: &mut Joint, a: &mut Body, b: &mut Body) {
+    let (ra, rb, d) = anchors(j, a, b);
+    let p = d.normalize() * j.impulse.x;
+    j.step_linear += p;
+    apply_linear(j, a, b, ra, rb, p);
+}
+
+/// One iteration of the distance constraint `|d| = length` (rod) or
+/// `|d| ≤ length` (rope: pulls only, and only when taut or about to be within
+/// this sub-step). The axis follows the current anchors.
+pub(super) fn solve(
+    j: &mut Joint,
+    a: &mut Body,
+    b: &mut Body,
+    length: Scalar,
+    rope: bool,
+    h: Scalar,
+    use_bias: bool,
+) {
+    let (ra, rb, d) = anchors(j, a, b);
+    let (axis, len) = d.normalize_and_length();
+    if len == ZERO {
+        return;
+    }
+    let ([ma, mb], [ia, ib]) = (j.inv_mass, j.inv_inertia);
+    let (rna, rnb) = (ra.cross(axis), rb.cross(axis));
+    let k = ma
+        .saturating_add(mb)
+        .saturating_add(ia.sat_mul(rna.sat_mul(rna)))
+        .saturating_add(ib.sat_mul(rnb.sat_mul(rnb)));
+    let mass = scalar::recip(k);
+    let c = len.saturating_sub(length);
+    let rate = (b.velocity_at_offset(rb) - a.velocity_at_offset(ra)).dot(axis);
+    let (bias, mass_scale, impulse_scale) = if rope && c < ZERO {
+        // Slack: let it lengthen up to the slack within this sub-step, no more.
+        (c.sat_mul(scalar::recip(h)), scalar::ONE, ZERO)
+    } else if use_bias {
+        (c.sat_mul(j.soft.bias_rate), j.soft.mass_scale, j.soft.impulse_scale)
+    } else {
+        (ZERO, scalar::ONE, ZERO)
+    };
+    let impulse = mass
+        .sat_mul(mass_scale)
+        .sat_mul(rate.saturating_add(bias))
+        .saturating_neg()
+        .saturating_sub(impulse_scale.sat_mul(j.impulse.x));
+    let mut new = j.impulse.x.saturating_add(impulse);
+    if rope {
+        // A rope only pulls: the impulse on B along A→B is never positive.
+        new = new.min(ZERO);
+    }
+    let applied = new.saturating_sub(j.impulse.x);
+    j.impulse.x = new;
+    let p = axis * applied;
+    j.step_linear += p;
+    apply_linear(j, a, b, ra, rb, p);
+}

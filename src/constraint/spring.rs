@@ -1,0 +1,30 @@
+//! Spring and damped spring: an explicit force along the line between the anchors.
+
+use super::{anchors, apply_linear, Joint};
+use crate::body::Body;
+use crate::math::scalar::{Scalar, ScalarExt as _, ZERO};
+
+/// Applies F = −k·(ℓ − ℓ₀) − c·ℓ̇ along the anchor line for a sub-step of `h`
+/// seconds (once per sub-step, never in the relax sweeps: it is a force, not a
+/// constraint). Anchors that coincide have no direction and get no force.
+pub(super) fn apply(
+    j: &mut Joint,
+    a: &mut Body,
+    b: &mut Body,
+    k: Scalar,
+    c: Scalar,
+    rest: Scalar,
+    h: Scalar,
+) {
+    let (ra, rb, d) = anchors(j, a, b);
+    let (axis, len) = d.normalize_and_length();
+    if len == ZERO {
+        return;
+    }
+    let stretch = len.saturating_sub(rest);
+    let rate = (b.velocity_at_offset(rb) - a.velocity_at_offset(ra)).dot(axis);
+    let force = k.sat_mul(stretch).saturating_add(c.sat_mul(rate)).saturating_neg();
+    let p = axis * force.sat_mul(h);
+    j.step_linear += p;
+    apply_linear(j, a, b, ra, rb, p);
+}
