@@ -64,6 +64,8 @@ pub(crate) struct Contacts<'a> {
     pub(crate) arbiters: ManagedSlice<'a, Arbiter>,
     pub(crate) next: ManagedSlice<'a, Arbiter>,
     pub(crate) arbiter_count: usize,
+    /// Sorted body-slot pairs held by joints whose bodies must not collide.
+    pub(crate) joint_pairs: ManagedSlice<'a, (u32, u32)>,
 }
 
 impl Contacts<'_> {
@@ -94,6 +96,21 @@ impl World<'_> {
     /// [`Error::CapacityFull`] when the bodies do not fit the proxy buffer or the
     /// pairs do not fit the contact buffer, or the merged arbiters would not fit.
     pub(crate) fn broad_phase(&mut self, dt: Scalar) -> Result<usize, Error> {
+        // Pairs held together by a joint that does not let them collide, sorted.
+        let mut held = 0usize;
+        for (_, j) in self.joints.iter() {
+            let Some(b) = j.def.body_b else { continue };
+            if j.def.collide_connected {
+                continue;
+            }
+            let (x, y) = (j.def.body_a.index(), b.index());
+            if let Some(slot) = self.contacts.joint_pairs.get_mut(held) {
+                *slot = (x.min(y), x.max(y));
+                held = held.saturating_add(1);
+            }
+        }
+        let held_pairs = self.contacts.joint_pairs.get_mut(..held).unwrap_or(&mut []);
+        held_pairs.sort_unstable();
         let c = &mut self.contacts;
         let mut n = 0usize;
         for (h, b) in self.bodies.iter() {
@@ -130,6 +147,10 @@ impl World<'_> {
             }
             let (Some(a), Some(b)) = (self.bodies.get_at(sa), self.bodies.get_at(sb)) else { continue };
             if !should_collide(a, b) {
+                continue;
+            }
+            let key = (sa.min(sb), sa.max(sb));
+            if c.joint_pairs.get(..held).is_some_and(|h| h.binary_search(&key).is_ok()) {
                 continue;
             }
             if let Some(slot) = c.pairs.get_mut(kept) {

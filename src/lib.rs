@@ -132,6 +132,7 @@ pub use force::{
 pub use geometry::{MassData, PolygonPath};
 pub use handler::{CallbackContext, CollisionHandler, FnHandler, Handler, PostStepFn};
 pub use index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};
+pub use managed::{Managed, ManagedSlice};
 pub use math::{Matrix22, Rect, Rot, Scalar, Transform, Vector2};
 pub use world::{
     Capacities, GeneratorHandle, JointBreakFn, StepReport, Storage, World, WorldBuffers, WorldDef,

@@ -193,6 +193,8 @@ pub struct Storage<'a> {
     pub arbiters_next: ManagedSlice<'a, Arbiter>,
     /// Built-in joint slots.
     pub joints: ManagedSlice<'a, Slot<Joint>>,
+    /// Body pairs held by joints that do not collide (scratch); as long as `joints`.
+    pub joint_pairs: ManagedSlice<'a, (u32, u32)>,
 }
 
 impl Storage<'_> {
@@ -218,6 +220,7 @@ impl Storage<'_> {
             arbiters: ManagedSlice::Owned(plain(c.contacts, Arbiter::EMPTY)),
             arbiters_next: ManagedSlice::Owned(plain(c.contacts, Arbiter::EMPTY)),
             joints: ManagedSlice::Owned(buf(c.joints)),
+            joint_pairs: ManagedSlice::Owned(plain(c.joints, (0, 0))),
         }
     }
 }
@@ -235,6 +238,7 @@ pub struct WorldBuffers<const BODIES: usize, const CONTACTS: usize, const JOINTS
     arbiters: [Arbiter; CONTACTS],
     arbiters_next: [Arbiter; CONTACTS],
     joints: [Slot<Joint>; JOINTS],
+    joint_pairs: [(u32, u32); JOINTS],
 }
 
 impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffers<BODIES, CONTACTS, JOINTS> {
@@ -251,6 +255,7 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffe
             arbiters: [Arbiter::EMPTY; CONTACTS],
             arbiters_next: [Arbiter::EMPTY; CONTACTS],
             joints: [Slot::EMPTY; JOINTS],
+            joint_pairs: [(0, 0); JOINTS],
         }
     }
 
@@ -265,6 +270,7 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffe
             arbiters: ManagedSlice::Borrowed(&mut self.arbiters[..]),
             arbiters_next: ManagedSlice::Borrowed(&mut self.arbiters_next[..]),
             joints: ManagedSlice::Borrowed(&mut self.joints[..]),
+            joint_pairs: ManagedSlice::Borrowed(&mut self.joint_pairs[..]),
         }
     }
 }
@@ -327,6 +333,9 @@ impl<'a> World<'a> {
         if storage.proxies.len() < nb || storage.proxy_bodies.len() < nb {
             return Err(Error::InvalidOperation { what: "proxy buffers must hold one entry per body" });
         }
+        if storage.joint_pairs.len() < storage.joints.len() {
+            return Err(Error::InvalidOperation { what: "joint pair buffer must hold one entry per joint" });
+        }
         if storage.arbiters.len() != storage.arbiters_next.len() {
             return Err(Error::InvalidOperation {
                 what: "the two arbiter buffers must have the same length",
@@ -347,6 +356,7 @@ impl<'a> World<'a> {
                 arbiters: storage.arbiters,
                 next: storage.arbiters_next,
                 arbiter_count: 0,
+                joint_pairs: storage.joint_pairs,
             },
             joints: Arena::new(storage.joints),
             constraints: Arena::inline(),

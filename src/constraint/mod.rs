@@ -156,6 +156,9 @@ pub struct JointDef {
     pub kind: JointKind,
     /// Break when the impulse over one step exceeds this (N·s); `None` never breaks.
     pub break_impulse: Option<Scalar>,
+    /// Whether the two bodies still collide with each other (default false, as in
+    /// Box2D: a chain's links or a ragdoll's limbs pass through their neighbours).
+    pub collide_connected: bool,
 }
 
 impl JointDef {
@@ -168,13 +171,36 @@ impl JointDef {
         anchor_b: Vector2,
         kind: JointKind,
     ) -> Self {
-        Self { body_a, anchor_a, body_b: Some(body_b), anchor_b, kind, break_impulse: None }
+        Self {
+            body_a,
+            anchor_a,
+            body_b: Some(body_b),
+            anchor_b,
+            kind,
+            break_impulse: None,
+            collide_connected: false,
+        }
     }
 
     /// A joint of `kind` between an anchor on a body and a fixed world point.
     #[must_use]
     pub fn to_world(body_a: BodyHandle, anchor_a: Vector2, world_point: Vector2, kind: JointKind) -> Self {
-        Self { body_a, anchor_a, body_b: None, anchor_b: world_point, kind, break_impulse: None }
+        Self {
+            body_a,
+            anchor_a,
+            body_b: None,
+            anchor_b: world_point,
+            kind,
+            break_impulse: None,
+            collide_connected: false,
+        }
+    }
+
+    /// Lets the two bodies collide with each other.
+    #[must_use]
+    pub fn collide_connected(mut self, collide: bool) -> Self {
+        self.collide_connected = collide;
+        self
     }
 
     /// Makes the joint breakable above `impulse` N·s per step.
