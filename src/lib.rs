@@ -45,7 +45,9 @@
 //! * [`index`], [`collide`], [`arbiter`], [`handler`], [`collision`]: the broad
 //!   phase (a trait you can implement), the narrow phase (one file per shape pair),
 //!   the arbiter lifecycle and the callbacks.
-//! * the solver: a sub-stepped soft contact solver (Box2D v3's design).
+//! * [`constraint`]: the manual's spring, damped spring and rod, plus rope,
+//!   pivot (limits, motor) and weld joints, breakable; your own via [`Constraint`].
+//! * the solver: a sub-stepped soft contact and joint solver (Box2D v3's design).
 //! * [`world`]: [`World`], which owns everything and runs [`World::step`]: broad
 //!   phase → forces → narrow phase and callbacks → solve and integrate → limits →
 //!   `post_solve` → post-step callbacks.
