@@ -181,7 +181,10 @@ fn check_any(points: &[Vector2]) {
             // Only the size limit may remain: some vertex is over 128 m from the
             // centroid.
             assert_eq!(e, Error::OutOfRange { what: "polygon size" });
-            let fv: Vec<(f64, f64)> = hull.iter().map(|p| (p.0 as f64, p.1 as f64)).collect();
+            // Relative to the first vertex, subtracted exactly: absolute raw
+            // coordinates reach 2^62, past f64's 2^53 exact integers.
+            let (ox, oy) = hull[0];
+            let fv: Vec<(f64, f64)> = hull.iter().map(|p| ((p.0 - ox) as f64, (p.1 - oy) as f64)).collect();
             let (_, c, _) = float_mass(&fv);
             let far = fv.iter().map(|p| (p.0 - c.0).hypot(p.1 - c.1) / 2f64.powi(32)).fold(0.0, f64::max);
             assert!(far > 128.0 - 1e-6, "rejected as too large at {far} m");
@@ -529,4 +532,22 @@ proptest! {
             Err(e) => prop_assert!(false, "unexpected {e:?}"),
         }
     }
+}
+
+/// Found by proptest: a 192 m triangle at a 1.6e9 m offset whose far vertex is
+/// 131.9 m from the centroid must be rejected as too large (the float oracle had
+/// lost precision at that offset; the engine's exact integers had not).
+#[test]
+fn far_offset_triangle_over_the_size_limit_is_rejected() {
+    let p = |x: i64, y: i64| Vector2::new(Scalar::from_num(x), Scalar::from_num(y));
+    let points = [
+        p(-1_610_612_800, 1_610_612_800),
+        p(-1_610_612_608, 1_610_612_832),
+        p(-1_610_612_800, 1_610_612_768),
+    ];
+    assert_eq!(PolygonPath::new(&points), Err(Error::OutOfRange { what: "polygon size" }));
+    // The same triangle near the origin, 128 m limit: its vertex at (192, 32) is
+    // √(128² + 32²) = 131.9 m from the centroid (64, 0).
+    let near = [p(0, 0), p(192, 32), p(0, -32)];
+    assert_eq!(PolygonPath::new(&near), Err(Error::OutOfRange { what: "polygon size" }));
 }
