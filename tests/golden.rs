@@ -1,62 +1,44 @@
-//! Golden state hash: a fixed scene stepped 600 times must hash to a committed
-//! constant, in debug and release, on every target. A change to this constant must
-//! be deliberate and explained in its commit message.
+//! Golden state hashes: canonical scenes stepped N times must hash to committed
+//! constants, in debug and release, on every target of the contract
+//! (`scripts/golden-matrix.sh` runs this file on x86_64, i686, aarch64, armv7,
+//! s390x big-endian and wasm32-wasip1, and the same scenes on a Cortex-M4). A
+//! change to a constant must be deliberate and explained in its commit message.
+//!
+//! The scenes live in `golden_scenes/mod.rs`, which the bare-metal Cortex-M4
+//! binary (`cross/cortex-m4`) includes too: no `std`, no allocation.
 
-use arphysics::{
-    BodyDef, GravityForceGenerator, GravityToPointForceGenerator, LinearForceGenerator, PolygonPath, Scalar,
-    Targets, Vector2, World, WorldBuffers, WorldDef,
-};
+mod golden_scenes;
 
-/// Only exact constants (no float conversion) so the scene itself cannot vary.
-fn q(num: i32, den: i32) -> Scalar {
-    Scalar::from_num(num) / Scalar::from_num(den)
-}
+use golden_scenes::{Outcome, GOLDEN_CORE_SCENE, GOLDEN_LONG, GOLDEN_MIXED, GOLDEN_PYRAMID};
 
-fn core_scene(buffers: &mut WorldBuffers<32, 128>) -> World<'_> {
-    let mut w = World::new(WorldDef::new(q(320, 1), q(240, 1)), buffers.storage()).expect("world");
-    let tall = w.add_path(PolygonPath::rectangle(q(1, 2), q(3, 1)).expect("box")).expect("path");
-    let square = w.add_path(PolygonPath::rectangle(q(2, 1), q(2, 1)).expect("box")).expect("path");
-    let mut targets = Vec::new();
-    for i in 0..8 {
-        let x = q(20 + 30 * i, 1);
-        let c = w
-            .add_body(BodyDef::circle(q(1 + i, 4)).position(Vector2::new(x, q(200, 1))).mass(q(1 + i, 1)))
-            .expect("circle");
-        targets.push(c);
-        w.add_body(
-            BodyDef::polygon(if i % 2 == 0 { tall } else { square })
-                .position(Vector2::new(x, q(120, 1)))
-                .angle(q(i, 3))
-                .angular_velocity(q(i - 4, 2))
-                .linear_velocity(Vector2::new(q(i, 1), q(3, 1))),
-        )
-        .expect("polygon");
-    }
-    w.add_body(BodyDef::circle(q(5, 1)).position(Vector2::new(q(160, 1), q(20, 1))).static_body())
-        .expect("static");
-    w.add_force_generator(GravityForceGenerator::new(Vector2::new(q(0, 1), q(-981, 100)))).expect("gravity");
-    w.add_force_generator(
-        LinearForceGenerator::new(Vector2::new(q(7, 2), q(0, 1)))
-            .with_targets(Targets::bodies(&targets[..3]).expect("t")),
-    )
-    .expect("wind");
-    w.add_force_generator(GravityToPointForceGenerator::new(Vector2::new(q(160, 1), q(120, 1)), q(4, 1)))
-        .expect("attractor");
-    w
+fn report(name: &str, steps: u32, out: &Outcome) {
+    println!("{name} hash after {steps} steps: {:#018x} ({out:?})", out.hash);
 }
 
 #[test]
 fn core_scene_hash_after_600_steps_is_the_committed_constant() {
-    let mut buffers = WorldBuffers::new();
-    let mut w = core_scene(&mut buffers);
-    let dt = q(1, 60);
-    for _ in 0..600 {
-        w.step(dt).expect("step");
-    }
-    let hash = w.state_hash();
-    println!("core scene hash after 600 steps: {hash:#018x}");
-    assert_eq!(hash, GOLDEN_CORE_SCENE);
+    let out = golden_scenes::core_scene().expect("core scene");
+    report("core scene", golden_scenes::CORE_STEPS, &out);
+    assert_eq!(out.hash, GOLDEN_CORE_SCENE);
 }
 
-/// Committed golden value; see the commit that last changed it for why.
-const GOLDEN_CORE_SCENE: u64 = 0x21bb_23ef_99b0_fb52;
+#[test]
+fn pyramid_hash_is_the_committed_constant() {
+    let out = golden_scenes::pyramid().expect("pyramid");
+    report("pyramid", golden_scenes::PYRAMID_STEPS, &out);
+    assert_eq!(out.hash, GOLDEN_PYRAMID);
+}
+
+#[test]
+fn mixed_scene_hash_after_600_steps_is_the_committed_constant() {
+    let out = golden_scenes::mixed().expect("mixed scene");
+    report("mixed scene", golden_scenes::MIXED_STEPS, &out);
+    assert_eq!(out.hash, GOLDEN_MIXED);
+}
+
+#[test]
+fn long_running_scene_hash_after_2000_steps_is_the_committed_constant() {
+    let out = golden_scenes::long_running().expect("long-running scene");
+    report("long-running scene", golden_scenes::LONG_STEPS, &out);
+    assert_eq!(out.hash, GOLDEN_LONG);
+}

@@ -1,0 +1,191 @@
+#!/usr/bin/env bash
+# Golden hashes on the seven targets of the determinism contract, in debug and
+# release: x86_64 (native), i686, aarch64, armv7, s390x (big-endian) under
+# qemu-user, wasm32-wasip1 under node, and a bare-metal Cortex-M4
+# (thumbv7em-none-eabihf, no_std, no allocator) under qemu-system-arm.
+#
+# The hosted targets run `cargo test --test golden`; the Cortex-M4 runs
+# cross/cortex-m4, which includes the same scene file (tests/golden_scenes/mod.rs)
+# and checks the same committed constants.
+#
+# Installs what it needs, idempotently: Debian packages (qemu-user-static,
+# qemu-system-arm, cross gcc and libc for each foreign Linux target; nodejs only if
+# node is missing) and rustup targets. Without apt-get (or root/sudo) and with a
+# package missing, it fails loudly: nothing is ever skipped.
+#
+# Prints one line per target and profile, logs under target/golden-matrix/, and
+# exits non-zero if any target fails.
+#
+#   scripts/golden-matrix.sh                 # everything
+#   GOLDEN_TARGETS="s390x thumbv7em" scripts/golden-matrix.sh   # a subset (substring match)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$(pwd)
+LOGS="$ROOT/target/golden-matrix"
+mkdir -p "$LOGS"
+
+# One of these timeouts firing is a failure, never a hang of CI.
+TEST_TIMEOUT=${GOLDEN_TEST_TIMEOUT:-1800}
+M4_TIMEOUT=${GOLDEN_M4_TIMEOUT:-1800}
+
+start_all=$SECONDS
+say() { printf '%s\n' "$*"; }
+die() {
+  printf 'golden-matrix: ERROR: %s\n' "$*" >&2
+  exit 2
+}
+
+# ---- Debian packages -----------------------------------------------------------
+
+APT_PACKAGES=(
+  qemu-user-static qemu-system-arm
+  gcc-i686-linux-gnu libc6-dev-i386-cross
+  gcc-aarch64-linux-gnu libc6-dev-arm64-cross
+  gcc-arm-linux-gnueabihf libc6-dev-armhf-cross
+  gcc-s390x-linux-gnu libc6-dev-s390x-cross
+)
+command -v node >/dev/null 2>&1 || APT_PACKAGES+=(nodejs)
+
+installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'install ok installed'; }
+
+missing=()
+if command -v dpkg-query >/dev/null 2>&1; then
+  for p in "${APT_PACKAGES[@]}"; do installed "$p" || missing+=("$p"); done
+else
+  missing=("${APT_PACKAGES[@]}")
+fi
+if ((${#missing[@]})); then
+  t0=$SECONDS
+  say "installing Debian packages: ${missing[*]}"
+  command -v apt-get >/dev/null 2>&1 || die "apt-get not found; install by hand: ${missing[*]}"
+  if [ "$(id -u)" -eq 0 ]; then
+    SUDO=()
+  elif command -v sudo >/dev/null 2>&1; then
+    SUDO=(sudo)
+  else
+    die "not root and no sudo; install by hand: ${missing[*]}"
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${SUDO[@]}" apt-get update -qq || die "apt-get update failed"
+  "${SUDO[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >"$LOGS/apt.log" 2>&1 ||
+    { tail -n 30 "$LOGS/apt.log" >&2; die "apt-get install failed (log: $LOGS/apt.log)"; }
+  say "  installed in $((SECONDS - t0)) s"
+fi
+for tool in qemu-i386-static qemu-aarch64-static qemu-arm-static qemu-s390x-static qemu-system-arm node \
+  i686-linux-gnu-gcc aarch64-linux-gnu-gcc arm-linux-gnueabihf-gcc s390x-linux-gnu-gcc; do
+  command -v "$tool" >/dev/null 2>&1 || die "$tool not found after installing packages"
+done
+
+# ---- Rust targets --------------------------------------------------------------
+
+command -v rustup >/dev/null 2>&1 || die "rustup not found"
+RUST_TARGETS=(i686-unknown-linux-gnu aarch64-unknown-linux-gnu armv7-unknown-linux-gnueabihf
+  s390x-unknown-linux-gnu wasm32-wasip1 thumbv7em-none-eabihf)
+have_targets=$(rustup target list --installed)
+need_targets=()
+for t in "${RUST_TARGETS[@]}"; do grep -qx "$t" <<<"$have_targets" || need_targets+=("$t"); done
+if ((${#need_targets[@]})); then
+  t0=$SECONDS
+  say "adding rustup targets: ${need_targets[*]}"
+  rustup target add "${need_targets[@]}" >"$LOGS/rustup.log" 2>&1 ||
+    { cat "$LOGS/rustup.log" >&2; die "rustup target add failed"; }
+  say "  added in $((SECONDS - t0)) s"
+fi
+
+# The Cortex-M4 crate has its own lock file: it must pin the engine's
+# dependencies to the very versions the main crate tests with.
+for dep in fixed heapless managed az bytemuck half typenum; do
+  main_v=$(grep -A1 "^name = \"$dep\"$" Cargo.lock | sed -n 's/^version = "\(.*\)"/\1/p')
+  m4_v=$(grep -A1 "^name = \"$dep\"$" cross/cortex-m4/Cargo.lock | sed -n 's/^version = "\(.*\)"/\1/p')
+  [ "$main_v" = "$m4_v" ] ||
+    die "cross/cortex-m4/Cargo.lock has $dep '$m4_v', Cargo.lock has '$main_v': copy Cargo.lock there and rebuild"
+done
+
+# ---- the matrix ----------------------------------------------------------------
+
+passed=0
+failed=0
+failures=()
+selected() {
+  [ -z "${GOLDEN_TARGETS:-}" ] && return 0
+  local s
+  for s in $GOLDEN_TARGETS; do [[ $1 == *"$s"* ]] && return 0; done
+  return 1
+}
+
+# record TARGET PROFILE HOW STATUS SECONDS LOG
+record() {
+  local target=$1 profile=$2 how=$3 status=$4 secs=$5 log=$6 hashes
+  # "pyramid hash after 300 steps: 0x…" (host) or "pyramid: 0x… ok" (Cortex-M4)
+  # become "pyramid=0x…", in one order for every target.
+  hashes=$(grep -E '^[a-z -]+( hash after [0-9]+ steps)?: 0x[0-9a-f]{16}' "$log" 2>/dev/null |
+    sed -E 's/^([a-z-]+)[a-z -]*( hash after [0-9]+ steps)?: (0x[0-9a-f]{16}).*/\1=\3/' | sort | tr '\n' ' ' || true)
+  if [ "$status" -eq 0 ]; then
+    passed=$((passed + 1))
+    printf 'PASS  %-32s %-7s %-22s %4d s  %s\n' "$target" "$profile" "$how" "$secs" "$hashes"
+  else
+    failed=$((failed + 1))
+    failures+=("$target $profile")
+    printf 'FAIL  %-32s %-7s %-22s %4d s  (log: %s)\n' "$target" "$profile" "$how" "$secs" "$log"
+    sed -n '/hash after\|panicked\|assertion\|left:\|right:\|error\|MISMATCH\|FAILED\|panic:/p' "$log" |
+      head -n 30 | sed 's/^/      /'
+  fi
+}
+
+# hosted TARGET HOW [VAR=VALUE…]: cargo test --test golden in debug and release.
+hosted() {
+  local target=$1 how=$2
+  shift 2
+  selected "$target" || return 0
+  for profile in debug release; do
+    local log="$LOGS/$target-$profile.log" flags=() t0=$SECONDS status=0
+    [ "$profile" = release ] && flags=(--release)
+    env "$@" timeout "$TEST_TIMEOUT" cargo test --locked --target "$target" "${flags[@]}" --test golden \
+      -- --nocapture >"$log" 2>&1 || status=$?
+    # A run that printed no result line has not run the tests.
+    [ "$status" -eq 0 ] && ! grep -q '^test result: ok. 4 passed' "$log" && status=1
+    record "$target" "$profile" "$how" "$status" "$((SECONDS - t0))" "$log"
+  done
+}
+
+say "golden matrix: cargo test --test golden (debug and release) per target, then the Cortex-M4"
+
+hosted x86_64-unknown-linux-gnu native
+hosted i686-unknown-linux-gnu qemu-i386-static \
+  CARGO_TARGET_I686_UNKNOWN_LINUX_GNU_LINKER=i686-linux-gnu-gcc \
+  CARGO_TARGET_I686_UNKNOWN_LINUX_GNU_RUNNER=qemu-i386-static \
+  QEMU_LD_PREFIX=/usr/i686-linux-gnu
+hosted aarch64-unknown-linux-gnu qemu-aarch64-static \
+  CARGO_TARGET_AARCH64_UNKNOWN_LINUX_GNU_LINKER=aarch64-linux-gnu-gcc \
+  CARGO_TARGET_AARCH64_UNKNOWN_LINUX_GNU_RUNNER=qemu-aarch64-static \
+  QEMU_LD_PREFIX=/usr/aarch64-linux-gnu
+hosted armv7-unknown-linux-gnueabihf qemu-arm-static \
+  CARGO_TARGET_ARMV7_UNKNOWN_LINUX_GNUEABIHF_LINKER=arm-linux-gnueabihf-gcc \
+  CARGO_TARGET_ARMV7_UNKNOWN_LINUX_GNUEABIHF_RUNNER=qemu-arm-static \
+  QEMU_LD_PREFIX=/usr/arm-linux-gnueabihf
+hosted s390x-unknown-linux-gnu "qemu-s390x-static (BE)" \
+  CARGO_TARGET_S390X_UNKNOWN_LINUX_GNU_LINKER=s390x-linux-gnu-gcc \
+  CARGO_TARGET_S390X_UNKNOWN_LINUX_GNU_RUNNER=qemu-s390x-static \
+  QEMU_LD_PREFIX=/usr/s390x-linux-gnu
+hosted wasm32-wasip1 "node (WASI)" \
+  "CARGO_TARGET_WASM32_WASIP1_RUNNER=node --no-warnings $ROOT/scripts/wasi-run.mjs"
+
+# The Cortex-M4: cross/cortex-m4's `cargo run` runs the ELF on qemu-system-arm
+# (mps2-an386, see its .cargo/config.toml); exit status 0 only if every scene matched.
+if selected thumbv7em-none-eabihf; then
+  for profile in debug release; do
+    log="$LOGS/thumbv7em-none-eabihf-$profile.log" flags=() t0=$SECONDS status=0
+    [ "$profile" = release ] && flags=(--release)
+    (cd cross/cortex-m4 && timeout "$M4_TIMEOUT" cargo run --locked "${flags[@]}") >"$log" 2>&1 </dev/null ||
+      status=$?
+    [ "$status" -eq 0 ] && ! grep -q '^golden: 4 passed, 0 failed' "$log" && status=1
+    record thumbv7em-none-eabihf "$profile" "qemu-system-arm mps2-an386" "$status" "$((SECONDS - t0))" "$log"
+  done
+fi
+
+say "golden matrix finished in $((SECONDS - start_all)) s; logs in $LOGS"
+if ((failed)); then
+  printf 'failed: %s\n' "${failures[@]}"
+fi
+say "golden-matrix: $passed passed, $failed failed"
+((failed == 0))
