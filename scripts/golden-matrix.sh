@@ -118,57 +118,98 @@ record() {
   local target=$1 profile=$2 how=$3 status=$4 secs=$5 log=$6 hashes
   # "pyramid hash after 300 steps: 0x…" (host) or "pyramid: 0x… ok" (Cortex-M4)
   # become "pyramid=0x…", in one order for every target.
-  hashes=$(grep -E '^[a-z -]+( hash after [0-9]+ steps)?: 0x[0-9a-f]{16}' "$log" 2>/dev/null |
-    sed -E 's/^([a-z-]+)[a-z -]*( hash after [0-9]+ steps)?: (0x[0-9a-f]{16}).*/\1=\3/' | sort | tr '\n' ' ' || true)
+  # (on wasm the line follows libtest's "test name ... " on the same line).
+  hashes=$(grep -Eo '[a-z -]+( hash after [0-9]+ steps)?: 0x[0-9a-f]{16}' "$log" 2>/dev/null |
+    sed -E 's/^ *([a-z-]+)[a-z -]*( hash after [0-9]+ steps)?: (0x[0-9a-f]{16}).*/\1=\3/' | sort | tr '\n' ' ' || true)
   if [ "$status" -eq 0 ]; then
     passed=$((passed + 1))
-    printf 'PASS  %-32s %-7s %-22s %4d s  %s\n' "$target" "$profile" "$how" "$secs" "$hashes"
+    printf 'PASS  %-32s %-7s %-26s %4d s  %s\n' "$target" "$profile" "$how" "$secs" "$hashes"
   else
     failed=$((failed + 1))
     failures+=("$target $profile")
-    printf 'FAIL  %-32s %-7s %-22s %4d s  (log: %s)\n' "$target" "$profile" "$how" "$secs" "$log"
+    printf 'FAIL  %-32s %-7s %-26s %4d s  (log: %s)\n' "$target" "$profile" "$how" "$secs" "$log"
     sed -n '/hash after\|panicked\|assertion\|left:\|right:\|error\|MISMATCH\|FAILED\|panic:/p' "$log" |
       head -n 30 | sed 's/^/      /'
   fi
 }
 
-# hosted TARGET HOW [VAR=VALUE…]: cargo test --test golden in debug and release.
-hosted() {
-  local target=$1 how=$2
-  shift 2
-  selected "$target" || return 0
-  for profile in debug release; do
-    local log="$LOGS/$target-$profile.log" flags=() t0=$SECONDS status=0
-    [ "$profile" = release ] && flags=(--release)
-    env "$@" timeout "$TEST_TIMEOUT" cargo test --locked --target "$target" "${flags[@]}" --test golden \
-      -- --nocapture >"$log" 2>&1 || status=$?
-    # A run that printed no result line has not run the tests.
-    [ "$status" -eq 0 ] && ! grep -q '^test result: ok. 4 passed' "$log" && status=1
-    record "$target" "$profile" "$how" "$status" "$((SECONDS - t0))" "$log"
-  done
+# Linkers and runners of the foreign hosted targets (cargo reads them per target).
+export CARGO_TARGET_I686_UNKNOWN_LINUX_GNU_LINKER=i686-linux-gnu-gcc
+export CARGO_TARGET_I686_UNKNOWN_LINUX_GNU_RUNNER=qemu-i386-static
+export CARGO_TARGET_AARCH64_UNKNOWN_LINUX_GNU_LINKER=aarch64-linux-gnu-gcc
+export CARGO_TARGET_AARCH64_UNKNOWN_LINUX_GNU_RUNNER=qemu-aarch64-static
+export CARGO_TARGET_ARMV7_UNKNOWN_LINUX_GNUEABIHF_LINKER=arm-linux-gnueabihf-gcc
+export CARGO_TARGET_ARMV7_UNKNOWN_LINUX_GNUEABIHF_RUNNER=qemu-arm-static
+export CARGO_TARGET_S390X_UNKNOWN_LINUX_GNU_LINKER=s390x-linux-gnu-gcc
+export CARGO_TARGET_S390X_UNKNOWN_LINUX_GNU_RUNNER=qemu-s390x-static
+export CARGO_TARGET_WASM32_WASIP1_RUNNER="node --no-warnings $ROOT/scripts/wasi-run.mjs"
+
+# target  how  QEMU_LD_PREFIX (the target's libc, for qemu-user's dynamic loader)
+FOREIGN=(
+  "i686-unknown-linux-gnu|qemu-i386-static|/usr/i686-linux-gnu"
+  "aarch64-unknown-linux-gnu|qemu-aarch64-static|/usr/aarch64-linux-gnu"
+  "armv7-unknown-linux-gnueabihf|qemu-arm-static|/usr/arm-linux-gnueabihf"
+  "s390x-unknown-linux-gnu|qemu-s390x-static (BE)|/usr/s390x-linux-gnu"
+  "wasm32-wasip1|node (WASI)|"
+)
+
+# Foreign builds leave out debug info, which only slows compiling and linking:
+# "debug" here means the test profile's opt-level 1 with debug assertions and
+# overflow checks, which stay as Cargo.toml sets them. The native build keeps
+# the profiles untouched so it reuses what `cargo test` built.
+NODEBUGINFO=(CARGO_PROFILE_DEV_DEBUG=false CARGO_PROFILE_TEST_DEBUG=false CARGO_PROFILE_RELEASE_DEBUG=false)
+
+# golden TARGET PROFILE HOW [VAR=VALUE…]: cargo test --test golden, then record.
+# TARGET "native" builds for the host without --target (sharing target/debug
+# and target/release with the plain `cargo test`).
+golden() {
+  local target=$1 profile=$2 how=$3
+  shift 3
+  local name=$target args=(--locked --test golden) t0=$SECONDS status=0
+  if [ "$target" = native ]; then
+    name=$HOST
+  else
+    args+=(--target "$target")
+  fi
+  [ "$profile" = release ] && args+=(--release)
+  local log="$LOGS/$name-$profile.log"
+  env "$@" timeout "$TEST_TIMEOUT" cargo test "${args[@]}" -- --nocapture >"$log" 2>&1 || status=$?
+  # A run that printed no result line has not run the tests.
+  [ "$status" -eq 0 ] && ! grep -q '^test result: ok. 4 passed' "$log" && status=1
+  record "$name" "$profile" "$how" "$status" "$((SECONDS - t0))" "$log"
 }
 
 say "golden matrix: cargo test --test golden (debug and release) per target, then the Cortex-M4"
 
-hosted x86_64-unknown-linux-gnu native
-hosted i686-unknown-linux-gnu qemu-i386-static \
-  CARGO_TARGET_I686_UNKNOWN_LINUX_GNU_LINKER=i686-linux-gnu-gcc \
-  CARGO_TARGET_I686_UNKNOWN_LINUX_GNU_RUNNER=qemu-i386-static \
-  QEMU_LD_PREFIX=/usr/i686-linux-gnu
-hosted aarch64-unknown-linux-gnu qemu-aarch64-static \
-  CARGO_TARGET_AARCH64_UNKNOWN_LINUX_GNU_LINKER=aarch64-linux-gnu-gcc \
-  CARGO_TARGET_AARCH64_UNKNOWN_LINUX_GNU_RUNNER=qemu-aarch64-static \
-  QEMU_LD_PREFIX=/usr/aarch64-linux-gnu
-hosted armv7-unknown-linux-gnueabihf qemu-arm-static \
-  CARGO_TARGET_ARMV7_UNKNOWN_LINUX_GNUEABIHF_LINKER=arm-linux-gnueabihf-gcc \
-  CARGO_TARGET_ARMV7_UNKNOWN_LINUX_GNUEABIHF_RUNNER=qemu-arm-static \
-  QEMU_LD_PREFIX=/usr/arm-linux-gnueabihf
-hosted s390x-unknown-linux-gnu "qemu-s390x-static (BE)" \
-  CARGO_TARGET_S390X_UNKNOWN_LINUX_GNU_LINKER=s390x-linux-gnu-gcc \
-  CARGO_TARGET_S390X_UNKNOWN_LINUX_GNU_RUNNER=qemu-s390x-static \
-  QEMU_LD_PREFIX=/usr/s390x-linux-gnu
-hosted wasm32-wasip1 "node (WASI)" \
-  "CARGO_TARGET_WASM32_WASIP1_RUNNER=node --no-warnings $ROOT/scripts/wasi-run.mjs"
+HOST=$(rustc -vV | sed -n 's/^host: //p')
+if selected "$HOST"; then
+  for profile in debug release; do golden native "$profile" native; done
+fi
+
+# One cargo invocation builds every selected foreign target of a profile, so the
+# two cores stay busy across targets; each target then runs on its own (and a
+# target that failed to build fails there, with its own log).
+foreign_targets=()
+for f in "${FOREIGN[@]}"; do
+  IFS='|' read -r target _ _ <<<"$f"
+  selected "$target" && foreign_targets+=(--target "$target")
+done
+for profile in debug release; do
+  ((${#foreign_targets[@]})) || break
+  t0=$SECONDS flags=()
+  [ "$profile" = release ] && flags=(--release)
+  if env "${NODEBUGINFO[@]}" timeout "$TEST_TIMEOUT" cargo test --locked --no-run --test golden "${flags[@]}" \
+    "${foreign_targets[@]}" >"$LOGS/build-foreign-$profile.log" 2>&1; then
+    say "built $((${#foreign_targets[@]} / 2)) foreign targets ($profile) in $((SECONDS - t0)) s"
+  else
+    say "building the foreign targets together failed ($profile, $((SECONDS - t0)) s); each target retries alone"
+  fi
+  for f in "${FOREIGN[@]}"; do
+    IFS='|' read -r target how prefix <<<"$f"
+    selected "$target" || continue
+    golden "$target" "$profile" "$how" "${NODEBUGINFO[@]}" QEMU_LD_PREFIX="$prefix"
+  done
+done
 
 # The Cortex-M4: cross/cortex-m4's `cargo run` runs the ELF on qemu-system-arm
 # (mps2-an386, see its .cargo/config.toml); exit status 0 only if every scene matched.
