@@ -92,14 +92,14 @@ if ((${#need_targets[@]})); then
   say "  added in $((SECONDS - t0)) s"
 fi
 
-# The Cortex-M4 crate has its own lock file: it must pin the engine's
-# dependencies to the very versions the main crate tests with.
-for dep in fixed heapless managed az bytemuck half typenum; do
-  main_v=$(grep -A1 "^name = \"$dep\"$" Cargo.lock | sed -n 's/^version = "\(.*\)"/\1/p')
-  m4_v=$(grep -A1 "^name = \"$dep\"$" cross/cortex-m4/Cargo.lock | sed -n 's/^version = "\(.*\)"/\1/p')
-  [ "$main_v" = "$m4_v" ] ||
-    die "cross/cortex-m4/Cargo.lock has $dep '$m4_v', Cargo.lock has '$main_v': copy Cargo.lock there and rebuild"
-done
+# The Cortex-M4 crate has its own lock file: it must build the engine with the
+# very dependency versions the main crate tests with.
+engine_deps() { cargo tree --locked -e normal --target thumbv7em-none-eabihf --prefix none "$@"; }
+if ! diff <(engine_deps --no-default-features) <(cd cross/cortex-m4 && engine_deps -p arphysics) \
+  >"$LOGS/engine-deps.diff" 2>&1; then
+  cat "$LOGS/engine-deps.diff" >&2
+  die "cross/cortex-m4/Cargo.lock pins other engine dependencies than Cargo.lock: copy Cargo.lock there and rebuild"
+fi
 
 # ---- the matrix ----------------------------------------------------------------
 
@@ -142,7 +142,8 @@ export CARGO_TARGET_ARMV7_UNKNOWN_LINUX_GNUEABIHF_LINKER=arm-linux-gnueabihf-gcc
 export CARGO_TARGET_ARMV7_UNKNOWN_LINUX_GNUEABIHF_RUNNER=qemu-arm-static
 export CARGO_TARGET_S390X_UNKNOWN_LINUX_GNU_LINKER=s390x-linux-gnu-gcc
 export CARGO_TARGET_S390X_UNKNOWN_LINUX_GNU_RUNNER=qemu-s390x-static
-export CARGO_TARGET_WASM32_WASIP1_RUNNER="node --no-warnings $ROOT/scripts/wasi-run.mjs"
+# (The WASI flag is needed by node 18, Debian's nodejs, and accepted by later nodes.)
+export CARGO_TARGET_WASM32_WASIP1_RUNNER="node --no-warnings --experimental-wasi-unstable-preview1 $ROOT/scripts/wasi-run.mjs"
 
 # target  how  QEMU_LD_PREFIX (the target's libc, for qemu-user's dynamic loader)
 FOREIGN=(
@@ -224,6 +225,7 @@ if selected thumbv7em-none-eabihf; then
   done
 fi
 
+((passed + failed)) || die "GOLDEN_TARGETS='${GOLDEN_TARGETS:-}' selects no target"
 say "golden matrix finished in $((SECONDS - start_all)) s; logs in $LOGS"
 if ((failed)); then
   printf 'failed: %s\n' "${failures[@]}"

@@ -39,8 +39,13 @@ fn main() -> ! {
     hprintln!("arphysics golden scenes on thumbv7em-none-eabihf ({})", profile);
     let mut failed = 0u32;
     for (name, run, golden) in SCENES {
-        match run() {
-            Ok(out) if out.hash == golden => hprintln!("{}: {:#018x} ok", name, out.hash),
+        let t0 = centiseconds();
+        let result = run();
+        let secs = centiseconds().wrapping_sub(t0);
+        match result {
+            Ok(out) if out.hash == golden => {
+                hprintln!("{}: {:#018x} ok ({}.{:02} s)", name, out.hash, secs / 100, secs % 100)
+            }
             Ok(out) => {
                 failed += 1;
                 hprintln!("{}: {:#018x} MISMATCH, committed {:#018x} ({:?})", name, out.hash, golden, out);
@@ -55,6 +60,13 @@ fn main() -> ! {
     hprintln!("golden: {} passed, {} failed", passed, failed);
     debug::exit(if failed == 0 { debug::EXIT_SUCCESS } else { debug::EXIT_FAILURE });
     halt()
+}
+
+/// The host's clock in centiseconds since QEMU started (semihosting SYS_CLOCK),
+/// to report how long each scene took under emulation.
+fn centiseconds() -> usize {
+    // SAFETY: SYS_CLOCK takes no argument and only returns a number.
+    unsafe { cortex_m_semihosting::syscall!(CLOCK) }
 }
 
 /// Only reached if the debugger ignored the exit request.
