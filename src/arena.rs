@@ -25,7 +25,7 @@ use core::marker::PhantomData;
 use managed::ManagedSlice;
 
 /// Marks the end of the free list.
-const NO_SLOT: u32 = u32::MAX;
+pub(crate) const NO_SLOT: u32 = u32::MAX;
 
 /// One slot of an [`Arena`]: an optional value and the slot's generation.
 ///
@@ -403,6 +403,36 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
     /// Generation and free-list link of slot `index`, for encoding.
     pub(crate) fn slot_meta(&self, index: u32) -> Option<(u32, u32)> {
         self.slots.slots().get(index as usize).map(|s| (s.generation, s.next_free))
+    }
+
+    /// Overwrites slot `index` (restoring a snapshot); `keep_value` leaves the
+    /// current value in place (a game hook the snapshot does not hold).
+    pub(crate) fn write_slot(
+        &mut self,
+        index: u32,
+        generation: u32,
+        next_free: u32,
+        value: Option<T>,
+        keep_value: bool,
+    ) {
+        if let Some(slot) = self.slots.slots_mut().get_mut(index as usize) {
+            slot.generation = generation;
+            slot.next_free = next_free;
+            if !keep_value {
+                slot.value = value;
+            }
+        }
+    }
+
+    /// Empties every slot from `index` on and sets the allocator state
+    /// (restoring a snapshot), so the arena is exactly one that saw that history.
+    pub(crate) fn finish_restore(&mut self, used: u32, free_head: u32, len: u32) {
+        for slot in self.slots.slots_mut().iter_mut().skip(used as usize) {
+            *slot = Slot::EMPTY;
+        }
+        self.used = used;
+        self.free_head = free_head;
+        self.len = len;
     }
 }
 

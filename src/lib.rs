@@ -114,7 +114,7 @@ pub mod geometry;
 pub mod handler;
 pub mod index;
 pub mod math;
-mod snapshot;
+pub mod snapshot;
 mod solver;
 mod step;
 pub mod world;

@@ -25,7 +25,6 @@ use crate::handler::{Handler, HandlerTable, PostStepQueue};
 use crate::index::Proxy;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rect, Rot, Vector2};
-use crate::snapshot::{self, Sink, StateHasher};
 
 /// Largest |coordinate| of the world bounds, in metres (2^20 ≈ 1,048 km).
 ///
@@ -787,31 +786,6 @@ impl<'a> World<'a> {
     }
 
     // ---- state ---------------------------------------------------------------
-
-    /// A 64-bit hash of the canonical little-endian encoding of the state
-    /// (step count, bounds and limits, every body with the body allocator's state).
-    /// Equal on every target and build for equal states.
-    #[must_use]
-    pub fn state_hash(&self) -> u64 {
-        let mut h = StateHasher::new();
-        self.encode(&mut h);
-        h.finish()
-    }
-
-    pub(crate) fn encode(&self, s: &mut impl Sink) {
-        s.put(b"ARPH");
-        s.u32(1);
-        s.u64(self.step_count);
-        s.rect(self.def.bounds);
-        s.scalar(self.def.max_linear_speed);
-        s.scalar(self.def.max_angular_speed);
-        snapshot::encode_arena(s, &self.bodies, |s, b| snapshot::encode_body(s, b));
-        s.u32(self.contacts.arbiter_count as u32);
-        for arb in self.contacts.live() {
-            snapshot::encode_arbiter(s, arb);
-        }
-        snapshot::encode_arena(s, &self.joints, |s, j| snapshot::encode_joint(s, j));
-    }
 }
 
 /// The unit rotation in the direction of `q`, or an error for (0, 0).
