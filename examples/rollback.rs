@@ -32,7 +32,7 @@ struct Input {
 /// A deterministic "player": changes its mind every now and then.
 fn scripted_input(player: u32, frame: u32) -> Input {
     let phase = (frame / (37 + 11 * player)) % 4;
-    Input { push: [-1, 0, 1, 0][phase as usize], jump: (frame + 17 * player) % 90 == 0 }
+    Input { push: [-1, 0, 1, 0][phase as usize], jump: (frame + 17 * player).is_multiple_of(90) }
 }
 
 fn build() -> Result<(World<'static>, [BodyHandle; 2]), arphysics::Error> {
