@@ -18,14 +18,20 @@ use crate::collide::{collide_circles, collide_polygon_circle, collide_polygons, 
 use crate::error::Error;
 use crate::geometry::PolygonPath;
 use crate::handler::{CallbackContext, HandlerTable};
-use crate::index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};
+use crate::index::{BruteForceIndex, PairSink, Proxy, SortAndSweepIndex, SpatialIndex, AUTO_THRESHOLD};
 use crate::math::Scalar;
 use crate::world::{World, SPECULATIVE_DISTANCE};
 
 /// The broad phase a world uses.
 pub enum Index<'a> {
-    /// Test all pairs (the default).
+    /// The default: brute force up to
+    /// [`AUTO_THRESHOLD`](crate::index::AUTO_THRESHOLD) proxies, sort-and-sweep
+    /// above (on scratch from the world's storage).
+    Auto,
+    /// Test all pairs.
     BruteForce(BruteForceIndex),
+    /// Sort and sweep on its own scratch.
+    SortAndSweep(SortAndSweepIndex<'a>),
     /// A game's own index, borrowed or (with `alloc`) boxed.
     Custom(Managed<'a, dyn SpatialIndex + Send + 'a>),
 }
@@ -41,18 +47,11 @@ impl<'a> Index<'a> {
     pub fn boxed(i: alloc::boxed::Box<dyn SpatialIndex + Send + 'a>) -> Self {
         Self::Custom(Managed::Owned(i))
     }
-
-    fn as_dyn_mut(&mut self) -> &mut (dyn SpatialIndex + Send + 'a) {
-        match self {
-            Self::BruteForce(i) => i,
-            Self::Custom(i) => &mut **i,
-        }
-    }
 }
 
 impl Default for Index<'_> {
     fn default() -> Self {
-        Self::BruteForce(BruteForceIndex)
+        Self::Auto
     }
 }
 
@@ -127,7 +126,13 @@ impl World<'_> {
         }
         let proxies = c.proxies.get(..n).unwrap_or(&[]);
         let mut sink = PairSink { pairs: &mut c.pairs, len: 0, overflowed: false };
-        self.index.as_dyn_mut().find_pairs(proxies, &mut sink);
+        match &mut self.index {
+            Index::Auto if n <= AUTO_THRESHOLD => BruteForceIndex.find_pairs(proxies, &mut sink),
+            Index::Auto => self.sweep.find_pairs(proxies, &mut sink),
+            Index::BruteForce(i) => i.find_pairs(proxies, &mut sink),
+            Index::SortAndSweep(i) => i.find_pairs(proxies, &mut sink),
+            Index::Custom(i) => i.find_pairs(proxies, &mut sink),
+        }
         if sink.overflowed {
             return Err(Error::CapacityFull { what: "contact pair" });
         }

@@ -194,6 +194,8 @@ pub struct Storage<'a> {
     pub joints: ManagedSlice<'a, Slot<Joint>>,
     /// Body pairs held by joints that do not collide (scratch); as long as `joints`.
     pub joint_pairs: ManagedSlice<'a, (u32, u32)>,
+    /// The automatic index's sort order (scratch), one entry per body.
+    pub sweep_order: ManagedSlice<'a, u32>,
 }
 
 impl Storage<'_> {
@@ -220,6 +222,7 @@ impl Storage<'_> {
             arbiters_next: ManagedSlice::Owned(plain(c.contacts, Arbiter::EMPTY)),
             joints: ManagedSlice::Owned(buf(c.joints)),
             joint_pairs: ManagedSlice::Owned(plain(c.joints, (0, 0))),
+            sweep_order: ManagedSlice::Owned(plain(c.bodies, 0)),
         }
     }
 }
@@ -238,6 +241,7 @@ pub struct WorldBuffers<const BODIES: usize, const CONTACTS: usize, const JOINTS
     arbiters_next: [Arbiter; CONTACTS],
     joints: [Slot<Joint>; JOINTS],
     joint_pairs: [(u32, u32); JOINTS],
+    sweep_order: [u32; BODIES],
 }
 
 impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffers<BODIES, CONTACTS, JOINTS> {
@@ -255,6 +259,7 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffe
             arbiters_next: [Arbiter::EMPTY; CONTACTS],
             joints: [Slot::EMPTY; JOINTS],
             joint_pairs: [(0, 0); JOINTS],
+            sweep_order: [0; BODIES],
         }
     }
 
@@ -270,6 +275,7 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffe
             arbiters_next: ManagedSlice::Borrowed(&mut self.arbiters_next[..]),
             joints: ManagedSlice::Borrowed(&mut self.joints[..]),
             joint_pairs: ManagedSlice::Borrowed(&mut self.joint_pairs[..]),
+            sweep_order: ManagedSlice::Borrowed(&mut self.sweep_order[..]),
         }
     }
 }
@@ -308,6 +314,7 @@ pub struct World<'a> {
     pub(crate) generators:
         Arena<'a, Generator<'a>, GeneratorMarker, [Slot<Generator<'a>>; MAX_FORCE_GENERATORS]>,
     pub(crate) index: Index<'a>,
+    pub(crate) sweep: crate::index::SortAndSweepIndex<'a>,
     pub(crate) handlers: HandlerTable<'a>,
     pub(crate) post_step: PostStepQueue,
     pub(crate) contacts: Contacts<'a>,
@@ -346,6 +353,7 @@ impl<'a> World<'a> {
             paths: Arena::new(storage.paths),
             generators: Arena::inline(),
             index: Index::default(),
+            sweep: crate::index::SortAndSweepIndex::new(storage.sweep_order),
             handlers: HandlerTable::new(),
             post_step: PostStepQueue::new(),
             contacts: Contacts {
