@@ -23,10 +23,12 @@ use crate::math::Scalar;
 use crate::world::{World, SPECULATIVE_DISTANCE};
 
 /// The broad phase a world uses.
+#[derive(Default)]
 pub enum Index<'a> {
     /// The default: brute force up to
     /// [`AUTO_THRESHOLD`](crate::index::AUTO_THRESHOLD) proxies, sort-and-sweep
     /// above (on scratch from the world's storage).
+    #[default]
     Auto,
     /// Test all pairs.
     BruteForce(BruteForceIndex),
@@ -49,11 +51,7 @@ impl<'a> Index<'a> {
     }
 }
 
-impl Default for Index<'_> {
-    fn default() -> Self {
-        Self::Auto
-    }
-}
+
 
 /// Scratch and persistent buffers of the collision stage.
 pub(crate) struct Contacts<'a> {
