@@ -51,8 +51,6 @@ impl<'a> Index<'a> {
     }
 }
 
-
-
 /// Scratch and persistent buffers of the collision stage.
 pub(crate) struct Contacts<'a> {
     pub(crate) proxies: ManagedSlice<'a, Proxy>,

@@ -114,6 +114,7 @@ pub mod geometry;
 pub mod handler;
 pub mod index;
 pub mod math;
+pub mod query;
 pub mod snapshot;
 mod solver;
 mod step;
@@ -136,6 +137,7 @@ pub use handler::{CallbackContext, CollisionHandler, FnHandler, Handler, PostSte
 pub use index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};
 pub use managed::{Managed, ManagedSlice};
 pub use math::{Matrix22, Rect, Rot, Scalar, Transform, Vector2};
+pub use query::{QueryFilter, QueryShape, RayHit};
 pub use world::{
     Capacities, GeneratorHandle, JointBreakFn, StepReport, Storage, World, WorldBuffers, WorldDef,
 };
