@@ -161,7 +161,8 @@ fn a_minimum_restitution_threshold_is_rejected_or_harmless() {
     let Ok(mut w) = World::with_capacities(def, Capacities::for_bodies(8)) else { return };
     let floor = w.add_path(arphysics::PolygonPath::rectangle(s(20.0), s(1.0)).expect("floor")).expect("path");
     w.add_body(BodyDef::polygon(floor).position(v(50.0, 0.5)).static_body()).expect("floor");
-    let ball = BodyDef::circle(s(0.5)).position(v(50.0, 2.0)).linear_velocity(v(0.0, -5.0)).restitution(s(0.5));
+    let ball =
+        BodyDef::circle(s(0.5)).position(v(50.0, 2.0)).linear_velocity(v(0.0, -5.0)).restitution(s(0.5));
     w.add_body(ball).expect("ball");
     for _ in 0..30 {
         w.step(s(1.0 / 60.0)).expect("step");

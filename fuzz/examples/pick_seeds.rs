@@ -1,6 +1,7 @@
 //! Picks a small seed corpus: greedily the inputs that add the most behaviours
 //! not seen yet (each kind of op that succeeded, each kind that failed, contacts,
-//! joints, snapshots, restores), preferring short inputs.
+//! joints, snapshots, restores), preferring short inputs; inputs over 2 KB are
+//! skipped.
 //!
 //! `cargo run --release --example pick_seeds -- scene|snapshot N OUT_DIR IN_DIR...`
 
@@ -53,6 +54,9 @@ fn main() {
         for e in std::fs::read_dir(dir).expect("dir") {
             let path = e.expect("entry").path();
             let bytes = std::fs::read(&path).expect("read");
+            if bytes.len() > 2048 {
+                continue; // keep the committed corpus small
+            }
             let u = Unstructured::new(&bytes);
             let b = if kind == "snapshot" {
                 match SnapshotInput::arbitrary_take_rest(u) {
