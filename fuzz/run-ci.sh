@@ -48,8 +48,10 @@ for t in "${targets[@]}"; do
     grep -E '^(stat::number_of_executed_units|stat::average_exec_per_sec)' "$scratch/$t.log" | sed "s/^/fuzz: $t: /"
   else
     failed+=("$t")
-    echo "fuzz: $t FAILED; the last lines of its log:"
-    tail -n 60 "$scratch/$t.log"
+    echo "fuzz: $t FAILED:"
+    grep -E -A3 -m3 'panicked at|ERROR: libFuzzer|SUMMARY: ' "$scratch/$t.log"
+    echo "fuzz: the last lines of its log:"
+    tail -n 30 "$scratch/$t.log"
     for a in $(find "artifacts/$t" -type f -newer "$scratch/$t.start" 2>/dev/null); do
       echo "fuzz: $t: input $a decodes as:"
       cargo +nightly fuzz fmt "$t" "$a" 2>&1 | head -n 200
