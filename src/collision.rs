@@ -26,7 +26,7 @@ use crate::world::{World, SPECULATIVE_DISTANCE};
 #[derive(Default)]
 pub enum Index<'a> {
     /// The default: brute force up to
-    /// [`AUTO_THRESHOLD`](crate::index::AUTO_THRESHOLD) proxies, sort-and-sweep
+    /// [`AUTO_THRESHOLD`] proxies, sort-and-sweep
     /// above (on scratch from the world's storage).
     #[default]
     Auto,
