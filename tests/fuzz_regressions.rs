@@ -130,3 +130,41 @@ fn a_snapshot_whose_arbiter_names_a_missing_body_is_rejected_or_harmless() {
         }
     }
 }
+
+/// `WorldDef::substeps` is documented as "1 to `MAX_SUBSTEPS`", and out-of-range
+/// input is an `Err` that names the parameter (README, Limits), but `World::new`
+/// does not check it (src/world.rs, `WorldDef::validate`): 0 is silently run as
+/// 1, and `u32::MAX` is accepted, after which one `step` runs 4,294,967,295
+/// sub-steps (src/solver.rs, `solve_and_integrate`: `for substep in 0..n`), a hang.
+/// The fuzz targets keep `substeps` below 20 so they can run at all.
+#[test]
+fn substeps_outside_one_to_max_substeps_are_rejected() {
+    for n in [0, arphysics::world::MAX_SUBSTEPS + 1, u32::MAX] {
+        let mut def = WorldDef::new(s(100.0), s(100.0));
+        def.substeps = n;
+        let r = World::with_capacities(def, Capacities::for_bodies(8));
+        assert!(r.is_err(), "substeps = {n} was accepted");
+    }
+}
+
+/// `WorldDef::restitution_threshold` is not checked by `World::new`
+/// (src/world.rs, `WorldDef::validate`), and the restitution pass negates it with
+/// a raw `-` (src/solver.rs:320, `cp.relative_velocity > -threshold`). With
+/// `Scalar::MIN` the first bouncy contact panics with "attempt to negate with
+/// overflow" in a debug build and wraps in a release build (debug and release
+/// differ). Found by `scene_ops` (a pile of bouncy boxes in a world whose
+/// restitution threshold was `Scalar::MIN`).
+#[test]
+fn a_minimum_restitution_threshold_is_rejected_or_harmless() {
+    let mut def = WorldDef::new(s(100.0), s(100.0));
+    def.restitution_threshold = Scalar::MIN;
+    let Ok(mut w) = World::with_capacities(def, Capacities::for_bodies(8)) else { return };
+    let floor = w.add_path(arphysics::PolygonPath::rectangle(s(20.0), s(1.0)).expect("floor")).expect("path");
+    w.add_body(BodyDef::polygon(floor).position(v(50.0, 0.5)).static_body()).expect("floor");
+    let ball =
+        BodyDef::circle(s(0.5)).position(v(50.0, 2.0)).linear_velocity(v(0.0, -5.0)).restitution(s(0.5));
+    w.add_body(ball).expect("ball");
+    for _ in 0..30 {
+        w.step(s(1.0 / 60.0)).expect("step");
+    }
+}
