@@ -102,8 +102,10 @@ struct Quality {
 
 #[derive(Clone, Debug, Default)]
 struct Run {
-    /// Median, min, max ms/step over the samples taken.
+    /// Median, min, max ms/step (wall clock) over the samples taken.
     median: Option<f64>,
+    /// Median thread CPU ms/step over the same samples.
+    cpu_median: Option<f64>,
     min: f64,
     max: f64,
     samples: usize,
@@ -124,12 +126,36 @@ fn ms_since(t: Instant) -> f64 {
     t.elapsed().as_secs_f64() * 1000.0
 }
 
+/// CPU time this thread has used, ms (`CLOCK_THREAD_CPUTIME_ID`): on a shared machine
+/// it leaves out the time the thread waited for a core.
+fn thread_cpu_ms() -> f64 {
+    let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: `ts` is a valid, writable timespec; the clock id is a constant.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &raw mut ts) };
+    if rc != 0 {
+        return f64::NAN;
+    }
+    ts.tv_sec as f64 * 1000.0 + ts.tv_nsec as f64 / 1e6
+}
+
+/// Median of a sorted, non-empty slice (the upper middle for an even length).
+fn median(sorted: &[f64]) -> Option<f64> {
+    sorted.get(sorted.len() / 2).copied()
+}
+
 fn run_engine<E: Engine>(scene: &Scene, plan: Plan, budget_s: f64, quality_steps: Option<usize>) -> Run {
     let mut r = Run::default();
     match run_inner::<E>(scene, plan, budget_s, quality_steps, &mut r) {
         Ok(()) => r,
         Err(e) => Run { error: Some(e), ..r },
     }
+}
+
+/// One step, counted; an error names the step it happened in.
+fn step<E: Engine>(e: &mut E, r: &mut Run) -> Result<(), String> {
+    e.step().map_err(|m| format!("{m} (in step {})", r.steps_run + 1))?;
+    r.steps_run += 1;
+    Ok(())
 }
 
 fn run_inner<E: Engine>(
@@ -147,9 +173,8 @@ fn run_inner<E: Engine>(
 
     let t = Instant::now();
     for _ in 0..plan.warmup {
-        e.step()?;
+        step(&mut e, r)?;
     }
-    r.steps_run = plan.warmup;
     r.warmup_ms = ms_since(t) / plan.warmup.max(1) as f64;
 
     // Fit the samples into the budget.
@@ -171,30 +196,33 @@ fn run_inner<E: Engine>(
     }
 
     let mut times = Vec::with_capacity(samples);
+    let mut cpu = Vec::with_capacity(samples);
     for _ in 0..samples {
+        let c = thread_cpu_ms();
         let t = Instant::now();
         for _ in 0..plan.per_sample {
-            e.step()?;
+            step(&mut e, r)?;
         }
         times.push(ms_since(t) / plan.per_sample as f64);
-        r.steps_run += plan.per_sample;
+        cpu.push((thread_cpu_ms() - c) / plan.per_sample as f64);
     }
     times.sort_by(f64::total_cmp);
+    cpu.sort_by(f64::total_cmp);
     r.samples = times.len();
     if let (Some(lo), Some(hi)) = (times.first(), times.last()) {
         r.min = *lo;
         r.max = *hi;
-        r.median = Some(times[times.len() / 2]);
     }
+    r.median = median(&times);
+    r.cpu_median = median(&cpu);
 
     if let Some(q) = quality_steps {
         let per_step = r.median.unwrap_or(r.warmup_ms);
         let more = q.saturating_sub(r.steps_run);
         if per_step * more as f64 <= budget_ms {
             for _ in 0..more {
-                e.step()?;
+                step(&mut e, r)?;
             }
-            r.steps_run += more;
             let top = e.body(scene.top_body)?;
             r.quality = Some(Quality {
                 steps: r.steps_run,
@@ -259,8 +287,15 @@ fn fmt_ms(r: Option<&Run>) -> String {
     }
 }
 
-fn ratio(a: Option<&Run>, b: Option<&Run>) -> String {
-    match (a.and_then(|r| r.median), b.and_then(|r| r.median)) {
+fn fmt_cpu(r: Option<&Run>) -> String {
+    match r.and_then(|r| r.cpu_median) {
+        Some(m) => format!("{m:.3}"),
+        None => "–".to_owned(),
+    }
+}
+
+fn ratio(a: Option<f64>, b: Option<f64>) -> String {
+    match (a, b) {
         (Some(a), Some(b)) if b > 0.0 => format!("{:.1}×", a / b),
         _ => "–".to_owned(),
     }
@@ -417,7 +452,7 @@ fn main() {
          rapier2d 0.36 (f32, default features, IntegrationParameters default: 4 solver iterations \
          = 4 sub-steps, 1 PGS + 1 stabilisation iteration each)"
     );
-    println!("- ratio = arphysics ms/step ÷ peer ms/step (how many times slower arphysics is)\n");
+    println!("- ms/step = wall clock, median over the samples; ratio = arphysics ÷ peer (how many times slower arphysics is)\n");
     println!("| scene | bodies | arphysics ms/step | Box2D v3 ms/step | rapier2d ms/step | ratio vs Box2D | ratio vs rapier |");
     println!("|---|---|---|---|---|---|---|");
     for (scene, _, runs) in &rows {
@@ -431,8 +466,27 @@ fn main() {
             fmt_ms(a.as_ref()),
             fmt_ms(b.as_ref()),
             fmt_ms(r.as_ref()),
-            ratio(a.as_ref(), b.as_ref()),
-            ratio(a.as_ref(), r.as_ref())
+            ratio(a.as_ref().and_then(|x| x.median), b.as_ref().and_then(|x| x.median)),
+            ratio(a.as_ref().and_then(|x| x.median), r.as_ref().and_then(|x| x.median))
+        );
+    }
+
+    println!("\nThe same samples in thread CPU time (leaves out the time the thread waited for a core on this shared machine):\n");
+    println!("| scene | bodies | arphysics CPU ms/step | Box2D v3 CPU ms/step | rapier2d CPU ms/step | ratio vs Box2D | ratio vs rapier |");
+    println!("|---|---|---|---|---|---|---|");
+    for (scene, _, runs) in &rows {
+        let a = find(runs, Which::Arphysics);
+        let b = find(runs, Which::Box2d);
+        let r = find(runs, Which::Rapier);
+        let dynamic = scene.bodies.iter().filter(|b| b.dynamic).count();
+        println!(
+            "| {} | {dynamic} | {} | {} | {} | {} | {} |",
+            scene.name,
+            fmt_cpu(a.as_ref()),
+            fmt_cpu(b.as_ref()),
+            fmt_cpu(r.as_ref()),
+            ratio(a.as_ref().and_then(|x| x.cpu_median), b.as_ref().and_then(|x| x.cpu_median)),
+            ratio(a.as_ref().and_then(|x| x.cpu_median), r.as_ref().and_then(|x| x.cpu_median))
         );
     }
 

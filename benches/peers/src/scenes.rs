@@ -255,7 +255,7 @@ fn joint_grid() -> Scene {
         steps: 500,
         // The grid swings down to about −140 m (its diagonal) and sideways.
         bounds: (-200.0, -300.0, 300.0, 100.0),
-        contacts_per_body: 1,
+        contacts_per_body: 4,
         top_body: (n / 2) * n + n - 1, // the bottom of the middle column
     }
 }
