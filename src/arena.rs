@@ -353,6 +353,11 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
     pub(crate) fn get2_at_mut(&mut self, i: u32, j: u32) -> Option<(&mut T, &mut T)> {
         let (i, j) = (i as usize, j as usize);
         let slots = self.slots.slots_mut();
+        // `split_at_mut` panics past the end: indices from outside (a restored
+        // joint naming a slot this arena never had) must not get that far.
+        if i >= slots.len() || j >= slots.len() {
+            return None;
+        }
         if i < j {
             let (lo, hi) = slots.split_at_mut(j);
             Some((lo.get_mut(i)?.value.as_mut()?, hi.first_mut()?.value.as_mut()?))

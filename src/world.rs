@@ -128,6 +128,22 @@ impl WorldDef {
         if self.max_angular_speed <= ZERO || self.max_angular_speed > MAX_ANGULAR_SPEED_LIMIT {
             return Err(Error::OutOfRange { what: "max_angular_speed" });
         }
+        if self.substeps == 0 || self.substeps > MAX_SUBSTEPS {
+            return Err(Error::OutOfRange { what: "substeps" });
+        }
+        let hundred = Scalar::const_from_int(100);
+        if self.contact_hertz < ZERO || self.contact_hertz > Scalar::const_from_int(1000) {
+            return Err(Error::OutOfRange { what: "contact_hertz" });
+        }
+        if self.contact_damping_ratio < ZERO || self.contact_damping_ratio > hundred {
+            return Err(Error::OutOfRange { what: "contact_damping_ratio" });
+        }
+        if self.contact_push_speed < ZERO || self.contact_push_speed > hundred {
+            return Err(Error::OutOfRange { what: "contact_push_speed" });
+        }
+        if self.restitution_threshold < ZERO || self.restitution_threshold > hundred {
+            return Err(Error::OutOfRange { what: "restitution_threshold" });
+        }
         Ok(())
     }
 }
