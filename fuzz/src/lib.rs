@@ -28,33 +28,6 @@ pub const MAX_OPS: usize = 160;
 /// Most world steps a run takes in total.
 pub const MAX_STEPS: u32 = 240;
 
-/// Findings reported and reproduced in `tests/fuzz_regressions.rs` but not fixed
-/// yet. With `ARPHYSICS_FUZZ_TOLERATE_KNOWN=1` in the environment the targets
-/// step over them, so that a long local run can look for other bugs; CI never sets
-/// it. Remove an entry when its fix lands (also see `tolerated_world` and the
-/// restitution threshold in `WorldSpec::def`).
-#[must_use]
-pub fn tolerated(e: &Error) -> bool {
-    static ON: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *ON.get_or_init(|| std::env::var_os("ARPHYSICS_FUZZ_TOLERATE_KNOWN").is_some())
-        && matches!(
-            e,
-            Error::InvalidSnapshot {
-                what: "a null generator target" | "speed out of range" | "spin out of range"
-            }
-        )
-}
-
-/// A restored world in the state of a known, unfixed finding (a joint naming a
-/// body that is not there); `false` unless `ARPHYSICS_FUZZ_TOLERATE_KNOWN` is set.
-#[must_use]
-pub fn tolerated_world(w: &World<'_>) -> bool {
-    tolerated(&Error::InvalidSnapshot { what: "a null generator target" })
-        && w.joints().any(|(_, j)| {
-            w.body(j.def().body_a).is_err() || j.def().body_b.is_some_and(|b| w.body(b).is_err())
-        })
-}
-
 // ---- values -------------------------------------------------------------------
 
 /// An arbitrary `Scalar`, biased towards values a game would use but able to be
@@ -288,13 +261,6 @@ impl WorldSpec {
         }
         if let Some(s) = self.restitution_threshold {
             d.restitution_threshold = s.get();
-            // Known finding (tests/fuzz_regressions.rs): `Scalar::MIN` overflows
-            // the negation in the restitution pass.
-            if d.restitution_threshold == Scalar::MIN
-                && tolerated(&Error::InvalidSnapshot { what: "spin out of range" })
-            {
-                d.restitution_threshold = Scalar::MAX;
-            }
         }
         if let Some(n) = self.arbiter_persistence {
             d.arbiter_persistence = n;
