@@ -45,6 +45,20 @@ pub enum ArbiterState {
     Separated = 4,
 }
 
+impl ArbiterState {
+    /// The state with this discriminant (snapshot decoding).
+    pub(crate) fn from_u8(v: u8) -> Option<Self> {
+        Some(match v {
+            0 => Self::NoCollision,
+            1 => Self::FirstContact,
+            2 => Self::Ignoring,
+            3 => Self::Contact,
+            4 => Self::Separated,
+            _ => return None,
+        })
+    }
+}
+
 /// One contact point of an arbiter.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ContactPoint {

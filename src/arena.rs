@@ -25,7 +25,7 @@ use core::marker::PhantomData;
 use managed::ManagedSlice;
 
 /// Marks the end of the free list.
-const NO_SLOT: u32 = u32::MAX;
+pub(crate) const NO_SLOT: u32 = u32::MAX;
 
 /// One slot of an [`Arena`]: an optional value and the slot's generation.
 ///
@@ -353,6 +353,11 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
     pub(crate) fn get2_at_mut(&mut self, i: u32, j: u32) -> Option<(&mut T, &mut T)> {
         let (i, j) = (i as usize, j as usize);
         let slots = self.slots.slots_mut();
+        // `split_at_mut` panics past the end: indices from outside (a restored
+        // joint naming a slot this arena never had) must not get that far.
+        if i >= slots.len() || j >= slots.len() {
+            return None;
+        }
         if i < j {
             let (lo, hi) = slots.split_at_mut(j);
             Some((lo.get_mut(i)?.value.as_mut()?, hi.first_mut()?.value.as_mut()?))
@@ -403,6 +408,36 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
     /// Generation and free-list link of slot `index`, for encoding.
     pub(crate) fn slot_meta(&self, index: u32) -> Option<(u32, u32)> {
         self.slots.slots().get(index as usize).map(|s| (s.generation, s.next_free))
+    }
+
+    /// Overwrites slot `index` (restoring a snapshot); `keep_value` leaves the
+    /// current value in place (a game hook the snapshot does not hold).
+    pub(crate) fn write_slot(
+        &mut self,
+        index: u32,
+        generation: u32,
+        next_free: u32,
+        value: Option<T>,
+        keep_value: bool,
+    ) {
+        if let Some(slot) = self.slots.slots_mut().get_mut(index as usize) {
+            slot.generation = generation;
+            slot.next_free = next_free;
+            if !keep_value {
+                slot.value = value;
+            }
+        }
+    }
+
+    /// Empties every slot from `index` on and sets the allocator state
+    /// (restoring a snapshot), so the arena is exactly one that saw that history.
+    pub(crate) fn finish_restore(&mut self, used: u32, free_head: u32, len: u32) {
+        for slot in self.slots.slots_mut().iter_mut().skip(used as usize) {
+            *slot = Slot::EMPTY;
+        }
+        self.used = used;
+        self.free_head = free_head;
+        self.len = len;
     }
 }
 

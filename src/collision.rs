@@ -18,14 +18,22 @@ use crate::collide::{collide_circles, collide_polygon_circle, collide_polygons, 
 use crate::error::Error;
 use crate::geometry::PolygonPath;
 use crate::handler::{CallbackContext, HandlerTable};
-use crate::index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};
+use crate::index::{BruteForceIndex, PairSink, Proxy, SortAndSweepIndex, SpatialIndex, AUTO_THRESHOLD};
 use crate::math::Scalar;
 use crate::world::{World, SPECULATIVE_DISTANCE};
 
 /// The broad phase a world uses.
+#[derive(Default)]
 pub enum Index<'a> {
-    /// Test all pairs (the default).
+    /// The default: brute force up to
+    /// [`AUTO_THRESHOLD`] proxies, sort-and-sweep
+    /// above (on scratch from the world's storage).
+    #[default]
+    Auto,
+    /// Test all pairs.
     BruteForce(BruteForceIndex),
+    /// Sort and sweep on its own scratch.
+    SortAndSweep(SortAndSweepIndex<'a>),
     /// A game's own index, borrowed or (with `alloc`) boxed.
     Custom(Managed<'a, dyn SpatialIndex + Send + 'a>),
 }
@@ -40,19 +48,6 @@ impl<'a> Index<'a> {
     #[cfg(feature = "alloc")]
     pub fn boxed(i: alloc::boxed::Box<dyn SpatialIndex + Send + 'a>) -> Self {
         Self::Custom(Managed::Owned(i))
-    }
-
-    fn as_dyn_mut(&mut self) -> &mut (dyn SpatialIndex + Send + 'a) {
-        match self {
-            Self::BruteForce(i) => i,
-            Self::Custom(i) => &mut **i,
-        }
-    }
-}
-
-impl Default for Index<'_> {
-    fn default() -> Self {
-        Self::BruteForce(BruteForceIndex)
     }
 }
 
@@ -96,6 +91,7 @@ impl World<'_> {
     /// [`Error::CapacityFull`] when the bodies do not fit the proxy buffer or the
     /// pairs do not fit the contact buffer, or the merged arbiters would not fit.
     pub(crate) fn broad_phase(&mut self, dt: Scalar) -> Result<usize, Error> {
+        let (vmax, wmax) = (self.def.max_linear_speed, self.angular_limit(dt));
         // Pairs held together by a joint that does not let them collide, sorted.
         let mut held = 0usize;
         for (_, j) in self.joints.iter() {
@@ -120,14 +116,20 @@ impl World<'_> {
             let (Some(p), Some(pb)) = (c.proxies.get_mut(n), c.proxy_bodies.get_mut(n)) else {
                 return Err(Error::CapacityFull { what: "broad-phase proxy" });
             };
-            let margin = SPECULATIVE_DISTANCE.saturating_add(sweep(b, dt));
+            let margin = SPECULATIVE_DISTANCE.saturating_add(sweep(b, dt, vmax, wmax));
             *p = Proxy { aabb: b.aabb.expand(margin), is_static: b.body_type == BodyType::Static };
             *pb = h.index();
             n = n.saturating_add(1);
         }
         let proxies = c.proxies.get(..n).unwrap_or(&[]);
         let mut sink = PairSink { pairs: &mut c.pairs, len: 0, overflowed: false };
-        self.index.as_dyn_mut().find_pairs(proxies, &mut sink);
+        match &mut self.index {
+            Index::Auto if n <= AUTO_THRESHOLD => BruteForceIndex.find_pairs(proxies, &mut sink),
+            Index::Auto => self.sweep.find_pairs(proxies, &mut sink),
+            Index::BruteForce(i) => i.find_pairs(proxies, &mut sink),
+            Index::SortAndSweep(i) => i.find_pairs(proxies, &mut sink),
+            Index::Custom(i) => i.find_pairs(proxies, &mut sink),
+        }
         if sink.overflowed {
             return Err(Error::CapacityFull { what: "contact pair" });
         }
@@ -175,6 +177,7 @@ impl World<'_> {
     /// `begin`, `pre_solve` and `end` in key order.
     pub(crate) fn update_arbiters(&mut self, npairs: usize, dt: Scalar) {
         let persistence = self.def.arbiter_persistence;
+        let (vmax, wmax) = (self.def.max_linear_speed, self.angular_limit(dt));
         let World { bodies, paths, contacts: c, handlers, post_step, .. } = self;
         let bodies: &Arena<'_, Body> = bodies;
         let (mut i, mut j, mut out) = (0usize, 0usize, 0usize);
@@ -200,7 +203,9 @@ impl World<'_> {
             let Some(mut arb) = pair_arbiter(bodies, key, previous) else { continue };
             let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else { continue };
             let manifold = if candidate && should_collide(a, b) {
-                let margin = SPECULATIVE_DISTANCE.saturating_add(sweep(a, dt)).saturating_add(sweep(b, dt));
+                let margin = SPECULATIVE_DISTANCE
+                    .saturating_add(sweep(a, dt, vmax, wmax))
+                    .saturating_add(sweep(b, dt, vmax, wmax));
                 collide_bodies(a, b, paths, margin)
             } else {
                 Manifold::EMPTY
@@ -350,14 +355,18 @@ fn pair_arbiter(bodies: &Arena<'_, Body>, key: (u32, u32), previous: Option<Arbi
 /// upper bound: (|vx| + |vy| + |ω|·r)·dt. Contacts are made this much earlier, so the
 /// solver's speculative constraint stops a fast body at the surface instead of
 /// finding it deep inside next step (speculative continuous collision).
-fn sweep(b: &Body, dt: Scalar) -> Scalar {
+///
+/// Speeds are taken at most at the world's limits, which the step enforces: a
+/// velocity a game set far above them cannot inflate the margins.
+fn sweep(b: &Body, dt: Scalar, vmax: Scalar, wmax: Scalar) -> Scalar {
     if !b.is_awake_mover() {
         return Scalar::ZERO;
     }
     let v = b.linear_velocity;
     v.x.saturating_abs()
-        .saturating_add(v.y.saturating_abs())
-        .saturating_add(b.angular_velocity.saturating_abs().sat_mul(b.radius))
+        .min(vmax)
+        .saturating_add(v.y.saturating_abs().min(vmax))
+        .saturating_add(b.angular_velocity.saturating_abs().min(wmax).sat_mul(b.radius))
         .sat_mul(dt)
 }
 

@@ -41,6 +41,24 @@ pub enum Error {
         /// The store.
         what: &'static str,
     },
+    /// A snapshot does not fit the buffer; `needed` bytes are required.
+    BufferTooSmall {
+        /// Bytes the snapshot needs.
+        needed: usize,
+    },
+    /// Bytes given to `restore` are not a valid snapshot (truncated, corrupted,
+    /// or from another format version). `what` says what was wrong.
+    InvalidSnapshot {
+        /// What failed to decode or validate.
+        what: &'static str,
+    },
+    /// A valid snapshot that does not fit this world: different world settings,
+    /// different polygon paths, too many objects for its capacities, or game hooks
+    /// (custom generators) in other slots. `what` says which.
+    SnapshotMismatch {
+        /// What differs.
+        what: &'static str,
+    },
     /// The operation does not apply to this object in its current state
     /// (for example setting the velocity of a static body). `what` says which.
     InvalidOperation {
@@ -67,6 +85,11 @@ impl fmt::Display for Error {
             Self::StaleHandle => f.write_str("the handle refers to an object that no longer exists"),
             Self::CapacityFull { what } => write!(f, "the {what} store is full"),
             Self::InvalidOperation { what } => write!(f, "invalid operation: {what}"),
+            Self::BufferTooSmall { needed } => {
+                write!(f, "the buffer is too small: {needed} bytes are needed")
+            }
+            Self::InvalidSnapshot { what } => write!(f, "not a valid snapshot: {what}"),
+            Self::SnapshotMismatch { what } => write!(f, "the snapshot does not fit this world: {what}"),
         }
     }
 }

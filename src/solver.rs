@@ -317,7 +317,7 @@ impl World<'_> {
             let count = usize::from(arb.count);
             for _ in 0..RESTITUTION_ITERATIONS {
                 for cp in arb.points.iter_mut().take(count) {
-                    if cp.relative_velocity > -threshold || cp.max_normal_impulse == ZERO {
+                    if cp.relative_velocity > threshold.saturating_neg() || cp.max_normal_impulse == ZERO {
                         continue;
                     }
                     let vn = (b.velocity_at_offset(cp.anchor_b) - a.velocity_at_offset(cp.anchor_a)).dot(n);

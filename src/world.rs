@@ -25,7 +25,6 @@ use crate::handler::{Handler, HandlerTable, PostStepQueue};
 use crate::index::Proxy;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rect, Rot, Vector2};
-use crate::snapshot::{self, Sink, StateHasher};
 
 /// Largest |coordinate| of the world bounds, in metres (2^20 ≈ 1,048 km).
 ///
@@ -129,6 +128,22 @@ impl WorldDef {
         if self.max_angular_speed <= ZERO || self.max_angular_speed > MAX_ANGULAR_SPEED_LIMIT {
             return Err(Error::OutOfRange { what: "max_angular_speed" });
         }
+        if self.substeps == 0 || self.substeps > MAX_SUBSTEPS {
+            return Err(Error::OutOfRange { what: "substeps" });
+        }
+        let hundred = Scalar::const_from_int(100);
+        if self.contact_hertz < ZERO || self.contact_hertz > Scalar::const_from_int(1000) {
+            return Err(Error::OutOfRange { what: "contact_hertz" });
+        }
+        if self.contact_damping_ratio < ZERO || self.contact_damping_ratio > hundred {
+            return Err(Error::OutOfRange { what: "contact_damping_ratio" });
+        }
+        if self.contact_push_speed < ZERO || self.contact_push_speed > hundred {
+            return Err(Error::OutOfRange { what: "contact_push_speed" });
+        }
+        if self.restitution_threshold < ZERO || self.restitution_threshold > hundred {
+            return Err(Error::OutOfRange { what: "restitution_threshold" });
+        }
         Ok(())
     }
 }
@@ -195,6 +210,8 @@ pub struct Storage<'a> {
     pub joints: ManagedSlice<'a, Slot<Joint>>,
     /// Body pairs held by joints that do not collide (scratch); as long as `joints`.
     pub joint_pairs: ManagedSlice<'a, (u32, u32)>,
+    /// The automatic index's sort order (scratch), one entry per body.
+    pub sweep_order: ManagedSlice<'a, u32>,
 }
 
 impl Storage<'_> {
@@ -221,6 +238,7 @@ impl Storage<'_> {
             arbiters_next: ManagedSlice::Owned(plain(c.contacts, Arbiter::EMPTY)),
             joints: ManagedSlice::Owned(buf(c.joints)),
             joint_pairs: ManagedSlice::Owned(plain(c.joints, (0, 0))),
+            sweep_order: ManagedSlice::Owned(plain(c.bodies, 0)),
         }
     }
 }
@@ -239,6 +257,7 @@ pub struct WorldBuffers<const BODIES: usize, const CONTACTS: usize, const JOINTS
     arbiters_next: [Arbiter; CONTACTS],
     joints: [Slot<Joint>; JOINTS],
     joint_pairs: [(u32, u32); JOINTS],
+    sweep_order: [u32; BODIES],
 }
 
 impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffers<BODIES, CONTACTS, JOINTS> {
@@ -256,6 +275,7 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffe
             arbiters_next: [Arbiter::EMPTY; CONTACTS],
             joints: [Slot::EMPTY; JOINTS],
             joint_pairs: [(0, 0); JOINTS],
+            sweep_order: [0; BODIES],
         }
     }
 
@@ -271,6 +291,7 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffe
             arbiters_next: ManagedSlice::Borrowed(&mut self.arbiters_next[..]),
             joints: ManagedSlice::Borrowed(&mut self.joints[..]),
             joint_pairs: ManagedSlice::Borrowed(&mut self.joint_pairs[..]),
+            sweep_order: ManagedSlice::Borrowed(&mut self.sweep_order[..]),
         }
     }
 }
@@ -309,6 +330,7 @@ pub struct World<'a> {
     pub(crate) generators:
         Arena<'a, Generator<'a>, GeneratorMarker, [Slot<Generator<'a>>; MAX_FORCE_GENERATORS]>,
     pub(crate) index: Index<'a>,
+    pub(crate) sweep: crate::index::SortAndSweepIndex<'a>,
     pub(crate) handlers: HandlerTable<'a>,
     pub(crate) post_step: PostStepQueue,
     pub(crate) contacts: Contacts<'a>,
@@ -347,6 +369,7 @@ impl<'a> World<'a> {
             paths: Arena::new(storage.paths),
             generators: Arena::inline(),
             index: Index::default(),
+            sweep: crate::index::SortAndSweepIndex::new(storage.sweep_order),
             handlers: HandlerTable::new(),
             post_step: PostStepQueue::new(),
             contacts: Contacts {
@@ -787,31 +810,6 @@ impl<'a> World<'a> {
     }
 
     // ---- state ---------------------------------------------------------------
-
-    /// A 64-bit hash of the canonical little-endian encoding of the state
-    /// (step count, bounds and limits, every body with the body allocator's state).
-    /// Equal on every target and build for equal states.
-    #[must_use]
-    pub fn state_hash(&self) -> u64 {
-        let mut h = StateHasher::new();
-        self.encode(&mut h);
-        h.finish()
-    }
-
-    pub(crate) fn encode(&self, s: &mut impl Sink) {
-        s.put(b"ARPH");
-        s.u32(1);
-        s.u64(self.step_count);
-        s.rect(self.def.bounds);
-        s.scalar(self.def.max_linear_speed);
-        s.scalar(self.def.max_angular_speed);
-        snapshot::encode_arena(s, &self.bodies, |s, b| snapshot::encode_body(s, b));
-        s.u32(self.contacts.arbiter_count as u32);
-        for arb in self.contacts.live() {
-            snapshot::encode_arbiter(s, arb);
-        }
-        snapshot::encode_arena(s, &self.joints, |s, j| snapshot::encode_joint(s, j));
-    }
 }
 
 /// The unit rotation in the direction of `q`, or an error for (0, 0).

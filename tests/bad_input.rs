@@ -155,6 +155,21 @@ fn invalid_world_definitions_are_rejected() {
         World::new(def, buffers.storage()).err(),
         Some(Error::OutOfRange { what: "max_linear_speed" })
     );
+    type Tweak = fn(&mut WorldDef);
+    let settings: [(Tweak, &str); 7] = [
+        (|d| d.substeps = 0, "substeps"),
+        (|d| d.substeps = u32::MAX, "substeps"),
+        (|d| d.contact_hertz = -Scalar::ONE, "contact_hertz"),
+        (|d| d.contact_damping_ratio = Scalar::MAX, "contact_damping_ratio"),
+        (|d| d.contact_push_speed = -Scalar::ONE, "contact_push_speed"),
+        (|d| d.restitution_threshold = Scalar::MIN, "restitution_threshold"),
+        (|d| d.max_angular_speed = Scalar::ZERO, "max_angular_speed"),
+    ];
+    for (tweak, what) in settings {
+        let mut def = WorldDef::new(s(10.0), s(10.0));
+        tweak(&mut def);
+        assert_eq!(World::new(def, buffers.storage()).err(), Some(Error::OutOfRange { what }));
+    }
 }
 
 #[test]

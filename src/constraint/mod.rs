@@ -290,6 +290,22 @@ pub(crate) fn validate(def: &JointDef, a: &Body, b: Option<&Body>, bounds: Rect)
             }
         }
     }
+    validate_params(def)
+}
+
+/// The checks on a definition's own values (no bodies needed): anchors, kind
+/// parameters, break impulse. Also used to validate snapshots.
+pub(crate) fn validate_params(def: &JointDef) -> Result<(), Error> {
+    let sane = |v: Vector2| v.x.saturating_abs() <= max_anchor() && v.y.saturating_abs() <= max_anchor();
+    if !sane(def.anchor_a) || (def.body_b.is_some() && !sane(def.anchor_b)) {
+        return Err(Error::OutOfRange { what: "anchor" });
+    }
+    if def.body_b.is_none()
+        && (def.anchor_b.x.saturating_abs() > crate::world::MAX_COORDINATE
+            || def.anchor_b.y.saturating_abs() > crate::world::MAX_COORDINATE)
+    {
+        return Err(Error::OutOfRange { what: "anchor" });
+    }
     let non_negative = |v: Scalar, what| if v < ZERO { Err(Error::OutOfRange { what }) } else { Ok(()) };
     let limit = MAX_BODY_RADIUS.sat_mul(Scalar::const_from_int(8));
     match def.kind {
@@ -329,9 +345,14 @@ pub(crate) fn validate(def: &JointDef, a: &Body, b: Option<&Body>, bounds: Rect)
 
 impl Joint {
     pub(crate) fn new(def: JointDef, a: &Body, b: &Body) -> Self {
+        Self::restored(def, a.rotation.inv_mul(b.rotation))
+    }
+
+    /// A joint with no accumulated impulses (creation, or a snapshot that sets them).
+    pub(crate) fn restored(def: JointDef, reference: Rot) -> Self {
         Self {
             def,
-            reference: a.rotation.inv_mul(b.rotation),
+            reference,
             impulse: Vector2::ZERO,
             angular_impulse: ZERO,
             motor_impulse: ZERO,

@@ -11,6 +11,7 @@
 pub mod circle;
 pub mod mass;
 pub mod polygon_path;
+pub mod ray;
 
 pub use circle::{circle_area, circle_unit_inertia, MAX_CIRCLE_RADIUS};
 pub use mass::{MassData, MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};

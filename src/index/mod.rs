@@ -19,13 +19,22 @@
 //! which pairs fit when the pair buffer is full does not vary.
 //!
 //! [`BruteForceIndex`] tests all pairs (the manual's default, fine below ~100
-//! moving bodies).
+//! moving bodies); [`SortAndSweepIndex`] scales to thousands. A world's default,
+//! [`Index::Auto`](crate::Index::Auto), uses brute force up to
+//! [`AUTO_THRESHOLD`] proxies and sort-and-sweep above; both report the same pairs,
+//! so the simulation is the same bits either way.
 
 mod brute_force;
+mod sort_and_sweep;
 
 pub use brute_force::BruteForceIndex;
+pub use sort_and_sweep::SortAndSweepIndex;
 
 use crate::math::Rect;
+
+/// Above this many proxies the automatic index sorts and sweeps instead of
+/// testing every pair (measured: the two cross over at about this size).
+pub const AUTO_THRESHOLD: usize = 64;
 
 /// One collidable body as the index sees it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

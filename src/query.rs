@@ -1,0 +1,229 @@
+//! World queries: ray casts, point, box and shape overlap queries.
+//!
+//! Every query takes a [`QueryFilter`] (collision groups, static bodies) and
+//! writes its results into a caller-owned slice, so none allocates. Results come
+//! in body-slot order, except all-hits ray casts, which come nearest first (ties
+//! by slot). Each body's bounding box is tested before its shape. Queries see
+//! the world as it was after the last step, and frozen (out-of-bounds) bodies too.
+
+use crate::body::{Body, BodyHandle, Shape};
+use crate::collide::{collide_circles, collide_polygon_circle, collide_polygons, Manifold};
+use crate::error::Error;
+use crate::geometry::ray::{polygon_contains, ray_circle, ray_polygon};
+use crate::geometry::PolygonPath;
+use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
+use crate::math::{Rect, Transform, Vector2};
+use crate::world::World;
+
+/// Which bodies a query sees.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct QueryFilter {
+    /// Group bits of the query: bodies sharing any bit are skipped (the same
+    /// rule as collisions). 0 sees every body.
+    pub groups: u32,
+    /// Skip static bodies.
+    pub skip_static: bool,
+}
+
+impl QueryFilter {
+    fn accepts(&self, b: &Body) -> bool {
+        (self.groups & b.collision_groups) == 0 && !(self.skip_static && b.is_static())
+    }
+}
+
+/// A ray's hit on a body.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RayHit {
+    /// The body hit.
+    pub body: BodyHandle,
+    /// Where the ray enters the body (m).
+    pub point: Vector2,
+    /// Unit outward surface normal there.
+    pub normal: Vector2,
+    /// Fraction of the ray's length at the hit, in [0, 1].
+    pub fraction: Scalar,
+}
+
+/// A shape to test for overlap, placed by a transform.
+#[derive(Clone, Copy, Debug)]
+pub enum QueryShape<'p> {
+    /// A circle of this radius (m).
+    Circle(Scalar),
+    /// A convex polygon.
+    Polygon(&'p PolygonPath),
+}
+
+impl<'a> World<'a> {
+    /// The direction and length of a ray, or an error for a zero-length one.
+    fn ray(from: Vector2, to: Vector2) -> Result<(Vector2, Scalar), Error> {
+        let (dir, length) = (to - from).normalize_and_length();
+        if length == ZERO {
+            return Err(Error::OutOfRange { what: "ray length" });
+        }
+        Ok((dir, length))
+    }
+
+    fn ray_body(&self, b: &Body, from: Vector2, dir: Vector2, length: Scalar) -> Option<(Scalar, Vector2)> {
+        let hit = match b.shape {
+            Shape::Circle { radius } => ray_circle(from, dir, length, b.position, radius),
+            Shape::Polygon(h) => ray_polygon(from, dir, length, self.paths.get(h)?, b.transform()),
+        }?;
+        Some((hit.distance, hit.normal))
+    }
+
+    fn hits<'s>(
+        &'s self,
+        from: Vector2,
+        to: Vector2,
+        filter: QueryFilter,
+    ) -> Result<impl Iterator<Item = RayHit> + use<'s, 'a>, Error> {
+        let (dir, length) = Self::ray(from, to)?;
+        let span = Rect::from_corners(from, to);
+        Ok(self.bodies.iter().filter_map(move |(h, b)| {
+            if !filter.accepts(b) || !b.aabb.overlaps(span) {
+                return None;
+            }
+            let (t, normal) = self.ray_body(b, from, dir, length)?;
+            Some(RayHit { body: h, point: from + dir * t, normal, fraction: scalar::div(t, length) })
+        }))
+    }
+
+    /// The closest body the ray from `from` to `to` enters, if any.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] `{ what: "ray length" }` for a zero-length ray.
+    pub fn ray_cast(&self, from: Vector2, to: Vector2, filter: QueryFilter) -> Result<Option<RayHit>, Error> {
+        // Nearest first; equal fractions go to the lower slot (iteration order).
+        Ok(self.hits(from, to, filter)?.fold(None, |best: Option<RayHit>, hit| match best {
+            Some(b) if b.fraction <= hit.fraction => Some(b),
+            _ => Some(hit),
+        }))
+    }
+
+    /// Every body the ray enters, nearest first (ties in slot order), into `out`.
+    /// Returns how many bodies it hits; when that is more than `out.len()`, `out`
+    /// holds the nearest ones.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for a zero-length ray.
+    pub fn ray_cast_all(
+        &self,
+        from: Vector2,
+        to: Vector2,
+        filter: QueryFilter,
+        out: &mut [RayHit],
+    ) -> Result<usize, Error> {
+        let mut count = 0usize;
+        for hit in self.hits(from, to, filter)? {
+            // Insertion into the sorted prefix; a hit beyond a full buffer drops off.
+            let kept = count.min(out.len());
+            let mut at = kept;
+            while at > 0 && out.get(at - 1).is_some_and(|o| o.fraction > hit.fraction) {
+                at -= 1;
+            }
+            if at < out.len() {
+                let end = if kept < out.len() { kept + 1 } else { kept };
+                if let Some(tail) = out.get_mut(at..end) {
+                    tail.rotate_right(1);
+                    if let Some(first) = tail.first_mut() {
+                        *first = hit;
+                    }
+                }
+            }
+            count = count.saturating_add(1);
+        }
+        Ok(count)
+    }
+
+    /// Bodies containing `point`, in slot order, into `out`; returns how many
+    /// there are (possibly more than `out` holds).
+    pub fn query_point(&self, point: Vector2, filter: QueryFilter, out: &mut [BodyHandle]) -> usize {
+        let found = self.bodies.iter().filter(|(_, b)| {
+            filter.accepts(b)
+                && b.aabb.contains(point)
+                && match b.shape {
+                    Shape::Circle { radius } => {
+                        let d = point - b.position;
+                        d.length_squared() <= radius.sat_mul(radius)
+                    }
+                    Shape::Polygon(h) => {
+                        self.paths.get(h).is_some_and(|p| polygon_contains(p, b.transform(), point))
+                    }
+                }
+        });
+        collect(found.map(|(h, _)| h), out)
+    }
+
+    /// Bodies whose bounding boxes overlap `area`, in slot order, into `out`;
+    /// returns how many there are. A box with `min == max` is a point.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] `{ what: "query box" }` when `min > max` on an axis.
+    pub fn query_aabb(
+        &self,
+        area: Rect,
+        filter: QueryFilter,
+        out: &mut [BodyHandle],
+    ) -> Result<usize, Error> {
+        if area.min.x > area.max.x || area.min.y > area.max.y {
+            return Err(Error::OutOfRange { what: "query box" });
+        }
+        let found = self.bodies.iter().filter(|(_, b)| filter.accepts(b) && b.aabb.overlaps(area));
+        Ok(collect(found.map(|(h, _)| h), out))
+    }
+
+    /// Bodies overlapping `shape` placed at `xf` (touching counts), in slot
+    /// order, into `out`; returns how many there are.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for a circle radius ≤ 0.
+    pub fn query_shape(
+        &self,
+        shape: QueryShape<'_>,
+        xf: Transform,
+        filter: QueryFilter,
+        out: &mut [BodyHandle],
+    ) -> Result<usize, Error> {
+        let reach = match shape {
+            QueryShape::Circle(r) if r <= ZERO => return Err(Error::OutOfRange { what: "radius" }),
+            QueryShape::Circle(r) => r,
+            QueryShape::Polygon(p) => p.radius(),
+        };
+        let area = Rect::from_center(xf.p, Vector2::new(reach, reach));
+        let found = self.bodies.iter().filter(|(_, b)| {
+            if !filter.accepts(b) || !b.aabb.overlaps(area) {
+                return false;
+            }
+            let m = match (shape, b.shape) {
+                (QueryShape::Circle(r), Shape::Circle { radius }) => {
+                    collide_circles(r, xf, radius, b.transform(), ZERO)
+                }
+                (QueryShape::Circle(r), Shape::Polygon(h)) => match self.paths.get(h) {
+                    Some(p) => collide_polygon_circle(p, b.transform(), r, xf, ZERO),
+                    None => Manifold::EMPTY,
+                },
+                (QueryShape::Polygon(q), Shape::Circle { radius }) => {
+                    collide_polygon_circle(q, xf, radius, b.transform(), ZERO)
+                }
+                (QueryShape::Polygon(q), Shape::Polygon(h)) => match self.paths.get(h) {
+                    Some(p) => collide_polygons(q, xf, p, b.transform(), ZERO),
+                    None => Manifold::EMPTY,
+                },
+            };
+            m.points().iter().any(|p| p.separation <= ZERO)
+        });
+        Ok(collect(found.map(|(h, _)| h), out))
+    }
+}
+
+/// Writes as many items as fit; returns how many there were.
+fn collect<T>(items: impl Iterator<Item = T>, out: &mut [T]) -> usize {
+    let mut n = 0usize;
+    for item in items {
+        if let Some(slot) = out.get_mut(n) {
+            *slot = item;
+        }
+        n = n.saturating_add(1);
+    }
+    n
+}

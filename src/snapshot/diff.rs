@@ -1,0 +1,165 @@
+//! The desync locator: where two snapshots first differ.
+
+use core::fmt;
+
+use super::read::Layout;
+use crate::error::Error;
+
+/// Which object of the state a difference is in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Object {
+    /// World-wide data: step count, settings, paths, allocator states.
+    World,
+    /// The body in this slot.
+    Body(u32),
+    /// The force generator in this slot.
+    Generator(u32),
+    /// The arbiter of the bodies in these two slots (lower first).
+    Arbiter(u32, u32),
+    /// The joint in this slot.
+    Joint(u32),
+}
+
+/// The first difference between two snapshots.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Difference {
+    /// Where.
+    pub object: Object,
+    /// Which field, e.g. `"position.x"` or `"normal impulse"`.
+    pub field: &'static str,
+}
+
+impl fmt::Display for Difference {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.object {
+            Object::World => write!(f, "world: {}", self.field),
+            Object::Body(i) => write!(f, "body in slot {i}: {}", self.field),
+            Object::Generator(i) => write!(f, "force generator in slot {i}: {}", self.field),
+            Object::Arbiter(a, b) => write!(f, "arbiter of bodies {a} and {b}: {}", self.field),
+            Object::Joint(i) => write!(f, "joint in slot {i}: {}", self.field),
+        }
+    }
+}
+
+/// Compares two snapshots (e.g. from two peers after the same frame) and names
+/// the first object and field that differ, in encoding order; `Ok(None)` when
+/// they are equal. Use it when the peers' state hashes disagree.
+///
+/// # Errors
+/// [`Error::InvalidSnapshot`] when either buffer is not a valid snapshot.
+pub fn diff(a: &[u8], b: &[u8]) -> Result<Option<Difference>, Error> {
+    let (la, lb) = (Layout::parse(a)?, Layout::parse(b)?);
+    let found = |object, field| Ok(Some(Difference { object, field }));
+    if la.step_count != lb.step_count {
+        return found(Object::World, "step count");
+    }
+    if la.def != lb.def {
+        return found(Object::World, "world definition");
+    }
+    if la.paths != lb.paths {
+        return found(Object::World, "polygon paths");
+    }
+    if la.bodies != lb.bodies {
+        return found(Object::World, "body allocator");
+    }
+    for i in 0..la.bodies.used {
+        let (ra, rb) = (la.body(i)?, lb.body(i)?);
+        let object = Object::Body(i);
+        if ra.live() != rb.live() {
+            return found(object, "exists");
+        }
+        if ra.generation != rb.generation {
+            return found(object, "generation");
+        }
+        if !ra.live() {
+            if ra.index() != rb.index() {
+                return found(object, "free-list link");
+            }
+            continue;
+        }
+        let fields = [
+            (ra.position.x != rb.position.x, "position.x"),
+            (ra.position.y != rb.position.y, "position.y"),
+            (ra.rotation != rb.rotation, "rotation"),
+            (ra.linear_velocity.x != rb.linear_velocity.x, "linear velocity.x"),
+            (ra.linear_velocity.y != rb.linear_velocity.y, "linear velocity.y"),
+            (ra.angular_velocity != rb.angular_velocity, "angular velocity"),
+            (ra.out_of_bounds() != rb.out_of_bounds(), "out of bounds"),
+        ];
+        if let Some((_, field)) = fields.iter().find(|(differs, _)| *differs) {
+            return found(object, field);
+        }
+        let (pa, pb) = (la.props(ra.index())?, lb.props(rb.index())?);
+        let fields = [
+            (pa.shape != pb.shape, "shape"),
+            (pa.body_type != pb.body_type, "body type"),
+            (pa.mass != pb.mass, "mass"),
+            (pa.inertia != pb.inertia, "inertia"),
+            (pa.friction != pb.friction, "friction"),
+            (pa.restitution != pb.restitution, "restitution"),
+            (pa.groups != pb.groups, "collision groups"),
+            (pa.level != pb.level, "collision level"),
+            (pa.user_data != pb.user_data, "user data"),
+        ];
+        if let Some((_, field)) = fields.iter().find(|(differs, _)| *differs) {
+            return found(object, field);
+        }
+    }
+    if la.generators != lb.generators {
+        return found(Object::World, "generator allocator");
+    }
+    for (i, (ga, gb)) in la.generators().zip(lb.generators()).enumerate() {
+        let (ga, gb) = (ga?, gb?);
+        let object = Object::Generator(i as u32);
+        if ga.0 != gb.0 || ga.1 != gb.1 {
+            return found(object, "slot");
+        }
+        if ga.2 != gb.2 {
+            return found(object, "parameters");
+        }
+    }
+    if la.arbiters != lb.arbiters {
+        return found(Object::World, "arbiter count");
+    }
+    for i in 0..la.arbiters {
+        let (aa, ab) = (la.arbiter(i)?, lb.arbiter(i)?);
+        let (x, y) = aa.key();
+        let object = Object::Arbiter(x, y);
+        let fields = [
+            (aa.key() != ab.key() || aa.a != ab.a || aa.b != ab.b, "bodies"),
+            (aa.state != ab.state, "state"),
+            (aa.steps_separated != ab.steps_separated, "steps since separation"),
+            (aa.count != ab.count, "contact point count"),
+            (aa.points.iter().zip(&ab.points).any(|(p, q)| p.0 != q.0), "feature id"),
+            (aa.points.iter().zip(&ab.points).any(|(p, q)| p.1 != q.1), "normal impulse"),
+            (aa.points.iter().zip(&ab.points).any(|(p, q)| p.2 != q.2), "friction impulse"),
+        ];
+        if let Some((_, field)) = fields.iter().find(|(differs, _)| *differs) {
+            return found(object, field);
+        }
+    }
+    if la.joints != lb.joints {
+        return found(Object::World, "joint allocator");
+    }
+    for i in 0..la.joints.used {
+        let (ja, jb) = (la.joint(i)?, lb.joint(i)?);
+        let object = Object::Joint(i);
+        if ja.generation != jb.generation || ja.next != jb.next || ja.joint.is_some() != jb.joint.is_some() {
+            return found(object, "slot");
+        }
+        if let (Some(x), Some(y)) = (ja.joint, jb.joint) {
+            let fields = [
+                (x.def != y.def, "definition"),
+                (x.reference != y.reference, "reference angle"),
+                (x.impulse != y.impulse, "impulse"),
+                (x.angular_impulse != y.angular_impulse, "angular impulse"),
+                (x.motor_impulse != y.motor_impulse, "motor impulse"),
+                (x.limit_impulse != y.limit_impulse, "limit impulse"),
+            ];
+            if let Some((_, field)) = fields.iter().find(|(differs, _)| *differs) {
+                return found(object, field);
+            }
+        }
+    }
+    Ok(None)
+}

@@ -1,0 +1,363 @@
+//! Writing the canonical encoding (see the module docs for the layout).
+
+use super::{Sink, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, NO_LINK, OUT_OF_BOUNDS, TRAILER, VERSION};
+use crate::arena::NO_SLOT;
+use crate::body::{Body, BodyType, Shape};
+use crate::constraint::{Joint, JointKind, MaxTorque};
+use crate::force::{Generator, Targets};
+use crate::geometry::PolygonPath;
+use crate::math::Scalar;
+use crate::world::{World, WorldDef};
+
+/// The properties of a body that the table holds (everything but its motion).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Props {
+    pub(super) shape: Shape,
+    pub(super) body_type: BodyType,
+    pub(super) mass: Scalar,
+    pub(super) inertia: Scalar,
+    pub(super) friction: Scalar,
+    pub(super) restitution: Scalar,
+    pub(super) groups: u32,
+    pub(super) level: u32,
+    pub(super) user_data: u64,
+}
+
+impl Props {
+    pub(super) fn of(b: &Body) -> Self {
+        Self {
+            shape: b.shape,
+            body_type: b.body_type,
+            mass: b.mass.mass,
+            inertia: b.mass.inertia,
+            friction: b.friction,
+            restitution: b.restitution,
+            groups: b.collision_groups,
+            level: b.collision_level,
+            user_data: b.user_data,
+        }
+    }
+}
+
+pub(super) fn write(w: &World<'_>, s: &mut impl Sink) {
+    s.put(MAGIC);
+    s.u32(VERSION);
+    s.u64(w.step_count);
+    write_def(s, &w.def);
+    s.u64(paths_checksum(w));
+
+    // The properties table: a new entry whenever a live body's properties differ
+    // from the previous live body's.
+    let mut count = 0u32;
+    let mut last: Option<Props> = None;
+    for (_, b) in w.bodies.iter() {
+        let p = Props::of(b);
+        if last != Some(p) {
+            count = count.saturating_add(1);
+            last = Some(p);
+        }
+    }
+    s.u32(count);
+    last = None;
+    for (_, b) in w.bodies.iter() {
+        let p = Props::of(b);
+        if last != Some(p) {
+            write_props(s, &p);
+            last = Some(p);
+        }
+    }
+
+    let (used, free_head, len) = w.bodies.allocator_state();
+    s.u32(used);
+    s.u32(link(free_head));
+    s.u32(len);
+    let mut index = 0u32;
+    last = None;
+    for i in 0..used {
+        let (generation, next_free) = w.bodies.slot_meta(i).unwrap_or((0, NO_SLOT));
+        s.u32(generation);
+        match w.bodies.get_at(i) {
+            Some(b) => {
+                let p = Props::of(b);
+                if last.is_some() && last != Some(p) {
+                    index = index.saturating_add(1);
+                }
+                last = Some(p);
+                let flags = if b.out_of_bounds { LIVE | OUT_OF_BOUNDS } else { LIVE };
+                s.u32(flags | (index & LINK_MASK));
+                s.vector(b.position);
+                s.rot(b.rotation);
+                s.vector(b.linear_velocity);
+                s.scalar(b.angular_velocity);
+            }
+            None => {
+                s.u32(link(next_free));
+                s.zeros(56);
+            }
+        }
+    }
+
+    let (used, free_head, len) = w.generators.allocator_state();
+    s.u32(used);
+    s.u32(link(free_head));
+    s.u32(len);
+    for i in 0..used {
+        let (generation, next_free) = w.generators.slot_meta(i).unwrap_or((0, NO_SLOT));
+        s.u32(generation);
+        s.u32(link(next_free));
+        match w.generators.get_at(i) {
+            None => s.u8(0),
+            Some(Generator::Linear(g)) => {
+                s.u8(1);
+                s.vector(g.force);
+                write_targets(s, &g.targets);
+            }
+            Some(Generator::Gravity(g)) => {
+                s.u8(2);
+                s.vector(g.gravity);
+                write_targets(s, &g.targets);
+            }
+            Some(Generator::GravityToPoint(g)) => {
+                s.u8(3);
+                s.vector(g.point);
+                s.scalar(g.acceleration);
+                write_targets(s, &g.targets);
+            }
+            Some(Generator::Custom(_)) => s.u8(4),
+        }
+    }
+
+    let live = w.contacts.live();
+    s.u32(live.len() as u32);
+    for a in live {
+        for h in [a.body_a, a.body_b] {
+            s.u32(h.index());
+            s.u32(h.generation());
+        }
+        s.u8(a.state as u8);
+        s.u32(a.steps_separated);
+        s.u8(a.count);
+        for (k, p) in a.points.iter().enumerate() {
+            // Unused point slots are written as zeros so equal states encode equally.
+            if k < usize::from(a.count) {
+                s.u16(p.id);
+                s.scalar(p.normal_impulse);
+                s.scalar(p.tangent_impulse);
+            } else {
+                s.zeros(18);
+            }
+        }
+    }
+
+    let (used, free_head, len) = w.joints.allocator_state();
+    s.u32(used);
+    s.u32(link(free_head));
+    s.u32(len);
+    for i in 0..used {
+        let (generation, next_free) = w.joints.slot_meta(i).unwrap_or((0, NO_SLOT));
+        let mut rec = Record::default();
+        rec.u32(generation);
+        rec.u32(link(next_free));
+        match w.joints.get_at(i) {
+            Some(j) => {
+                rec.u8(1);
+                write_joint(&mut rec, j);
+            }
+            None => rec.u8(0),
+        }
+        s.put(&rec.bytes);
+    }
+    s.put(TRAILER);
+}
+
+/// A free-list link in the 30-bit form.
+fn link(next: u32) -> u32 {
+    if next == NO_SLOT {
+        NO_LINK
+    } else {
+        next & LINK_MASK
+    }
+}
+
+pub(super) fn write_def(s: &mut impl Sink, d: &WorldDef) {
+    s.rect(d.bounds);
+    s.scalar(d.max_linear_speed);
+    s.scalar(d.max_angular_speed);
+    s.u32(d.substeps);
+    s.scalar(d.contact_hertz);
+    s.scalar(d.contact_damping_ratio);
+    s.scalar(d.contact_push_speed);
+    s.scalar(d.restitution_threshold);
+    s.u32(d.arbiter_persistence);
+}
+
+fn write_props(s: &mut impl Sink, p: &Props) {
+    match p.shape {
+        Shape::Circle { radius } => {
+            s.u8(0);
+            s.scalar(radius);
+        }
+        Shape::Polygon(h) => {
+            s.u8(1);
+            s.u32(h.index());
+            s.u32(h.generation());
+        }
+    }
+    s.u8(p.body_type as u8);
+    s.scalar(p.mass);
+    s.scalar(p.inertia);
+    s.scalar(p.friction);
+    s.scalar(p.restitution);
+    s.u32(p.groups);
+    s.u32(p.level);
+    s.u64(p.user_data);
+}
+
+fn write_targets(s: &mut impl Sink, t: &Targets) {
+    match t {
+        Targets::All => s.u8(0),
+        Targets::Level(l) => {
+            s.u8(1);
+            s.u32(*l);
+        }
+        Targets::Bodies(v) => {
+            s.u8(2);
+            s.u8(v.len() as u8);
+            for h in v {
+                s.u32(h.index());
+                s.u32(h.generation());
+            }
+        }
+    }
+}
+
+/// A fixed-size joint record being assembled (zero-padded to `JOINT_RECORD`).
+struct Record {
+    bytes: [u8; JOINT_RECORD],
+    pos: usize,
+}
+
+impl Default for Record {
+    fn default() -> Self {
+        Self { bytes: [0; JOINT_RECORD], pos: 0 }
+    }
+}
+
+impl Sink for Record {
+    fn put(&mut self, b: &[u8]) {
+        let end = self.pos.saturating_add(b.len());
+        if let Some(dst) = self.bytes.get_mut(self.pos..end) {
+            dst.copy_from_slice(b);
+        }
+        self.pos = end;
+    }
+}
+
+fn write_joint(s: &mut impl Sink, j: &Joint) {
+    let d = &j.def;
+    s.u32(d.body_a.index());
+    s.u32(d.body_a.generation());
+    match d.body_b {
+        Some(b) => {
+            s.u8(1);
+            s.u32(b.index());
+            s.u32(b.generation());
+        }
+        None => {
+            s.u8(0);
+            s.zeros(8);
+        }
+    }
+    s.vector(d.anchor_a);
+    s.vector(d.anchor_b);
+    s.bool(d.collide_connected);
+    match d.break_impulse {
+        Some(x) => {
+            s.u8(1);
+            s.scalar(x);
+        }
+        None => {
+            s.u8(0);
+            s.zeros(8);
+        }
+    }
+    s.rot(j.reference);
+    s.vector(j.impulse);
+    s.scalar(j.angular_impulse);
+    s.scalar(j.motor_impulse);
+    s.scalar(j.limit_impulse);
+    match d.kind {
+        JointKind::Spring { stiffness, rest_length } => {
+            s.u8(0);
+            s.scalar(stiffness);
+            s.scalar(rest_length);
+        }
+        JointKind::DampedSpring { stiffness, damping, rest_length } => {
+            s.u8(1);
+            s.scalar(stiffness);
+            s.scalar(damping);
+            s.scalar(rest_length);
+        }
+        JointKind::Rod { length } => {
+            s.u8(2);
+            s.scalar(length);
+        }
+        JointKind::Rope { max_length } => {
+            s.u8(3);
+            s.scalar(max_length);
+        }
+        JointKind::Pivot { limits, motor } => {
+            s.u8(4);
+            let (lo, hi) = limits.unwrap_or((Scalar::ZERO, Scalar::ZERO));
+            s.bool(limits.is_some());
+            s.scalar(lo);
+            s.scalar(hi);
+            s.bool(motor.is_some());
+            let (speed, torque) = motor.map_or((Scalar::ZERO, None), |m| match m.max_torque {
+                MaxTorque::Limited(t) => (m.speed, Some(t)),
+                MaxTorque::Unlimited => (m.speed, None),
+            });
+            s.scalar(speed);
+            s.bool(torque.is_none());
+            s.scalar(torque.unwrap_or(Scalar::ZERO));
+        }
+        JointKind::Weld => s.u8(5),
+    }
+}
+
+/// FNV-1a over the polygon paths (allocator state and every path's data), which
+/// the snapshot carries instead of the paths themselves.
+pub(super) fn paths_checksum(w: &World<'_>) -> u64 {
+    let mut h = super::StateHasher::new();
+    let (used, free_head, len) = w.paths.allocator_state();
+    h.u32(used);
+    h.u32(free_head);
+    h.u32(len);
+    for i in 0..used {
+        let (generation, next_free) = w.paths.slot_meta(i).unwrap_or((0, NO_SLOT));
+        h.u32(generation);
+        h.u32(next_free);
+        match w.paths.get_at(i) {
+            Some(p) => {
+                h.u8(1);
+                write_path(&mut h, p);
+            }
+            None => h.u8(0),
+        }
+    }
+    h.finish()
+}
+
+fn write_path(s: &mut impl Sink, p: &PolygonPath) {
+    s.u32(p.count as u32);
+    for v in p.vertices() {
+        s.vector(*v);
+    }
+    for n in p.normals() {
+        s.vector(*n);
+    }
+    s.scalar(p.area);
+    s.scalar(p.unit_inertia);
+    s.vector(p.centroid);
+    s.scalar(p.radius);
+}
