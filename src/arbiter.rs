@@ -76,20 +76,9 @@ pub struct ContactPoint {
     pub total_normal_impulse: Scalar,
     /// Largest single normal impulse in the step (N·s), e.g. for impact sounds.
     pub max_normal_impulse: Scalar,
-    // Solver data for this step (derived; not part of the snapshot).
+    // Offsets of the point from each centre of mass (derived, per step).
     pub(crate) anchor_a: Vector2,
     pub(crate) anchor_b: Vector2,
-    pub(crate) local_a: Vector2,
-    pub(crate) local_b: Vector2,
-    pub(crate) normal_mass: Scalar,
-    pub(crate) tangent_mass: Scalar,
-    pub(crate) relative_velocity: Scalar,
-    /// rA × n, rB × n, rA × t, rB × t (derived, per step).
-    pub(crate) rn: [Scalar; 2],
-    pub(crate) rt: [Scalar; 2],
-    /// The same scaled by the inverse inertias: iA·(rA × n), iB·(rB × n), … (derived).
-    pub(crate) irn: [Scalar; 2],
-    pub(crate) irt: [Scalar; 2],
 }
 
 /// The collision state of a pair of bodies.
@@ -108,21 +97,6 @@ pub struct Arbiter {
     pub(crate) restitution: Scalar,
     /// Solve this step (derived: set by the lifecycle and `pre_solve`).
     pub(crate) solve: bool,
-    /// Inverse masses of A and B for this step (0 unless dynamic; derived).
-    pub(crate) inv_mass: [Scalar; 2],
-    /// Inverse inertias of A and B for this step (derived).
-    pub(crate) inv_inertia: [Scalar; 2],
-    /// One body has infinite mass: use the stiffer static softness (derived).
-    pub(crate) static_pair: bool,
-    /// n·mA, n·mB, t·mA, t·mB: the linear velocity change per unit impulse
-    /// (derived, per step).
-    pub(crate) n_m: [Vector2; 2],
-    pub(crate) t_m: [Vector2; 2],
-    /// Inverse of the 2×2 normal mass matrix of a two-point manifold, by columns
-    /// (derived); `None` when one point or ill-conditioned.
-    pub(crate) block: Option<[Scalar; 4]>,
-    /// Off-diagonal entry of that matrix (derived).
-    pub(crate) k12: Scalar,
 }
 
 impl Arbiter {
@@ -144,27 +118,11 @@ impl Arbiter {
             max_normal_impulse: ZERO,
             anchor_a: Vector2::ZERO,
             anchor_b: Vector2::ZERO,
-            local_a: Vector2::ZERO,
-            local_b: Vector2::ZERO,
-            normal_mass: ZERO,
-            tangent_mass: ZERO,
-            relative_velocity: ZERO,
-            rn: [ZERO; 2],
-            rt: [ZERO; 2],
-            irn: [ZERO; 2],
-            irt: [ZERO; 2],
         }; 2],
         count: 0,
         friction: ZERO,
         restitution: ZERO,
         solve: false,
-        inv_mass: [ZERO; 2],
-        inv_inertia: [ZERO; 2],
-        static_pair: false,
-        n_m: [Vector2::ZERO; 2],
-        t_m: [Vector2::ZERO; 2],
-        block: None,
-        k12: ZERO,
     };
 
     /// The canonical key of the pair: (lower body slot, higher body slot).

@@ -157,6 +157,7 @@ pub use index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};
 pub use managed::{Managed, ManagedSlice};
 pub use math::{Matrix22, Rect, Rot, Scalar, Transform, Vector2};
 pub use query::{QueryFilter, QueryShape, RayHit};
+pub use solver::{ContactConstraint, SolverBody};
 pub use world::{
     Capacities, GeneratorHandle, JointBreakFn, StepReport, Storage, World, WorldBuffers, WorldDef,
 };

@@ -9,6 +9,8 @@
 
 use managed::ManagedSlice;
 
+use crate::solver::{ContactConstraint, Solver, SolverBody};
+
 use crate::arbiter::Arbiter;
 use crate::arena::{Arena, Handle, Slot};
 use crate::body::{Body, BodyDef, BodyHandle, BodyType, MassSpec, PathHandle, Shape};
@@ -212,6 +214,10 @@ pub struct Storage<'a> {
     pub joint_pairs: ManagedSlice<'a, (u32, u32)>,
     /// The automatic index's sort order (scratch), one entry per body.
     pub sweep_order: ManagedSlice<'a, u32>,
+    /// The solver's copy of each body during a step (scratch), one per body.
+    pub solver_bodies: ManagedSlice<'a, SolverBody>,
+    /// The solver's contact constraints (scratch); as long as `arbiters`.
+    pub contact_constraints: ManagedSlice<'a, ContactConstraint>,
 }
 
 impl Storage<'_> {
@@ -239,6 +245,8 @@ impl Storage<'_> {
             joints: ManagedSlice::Owned(buf(c.joints)),
             joint_pairs: ManagedSlice::Owned(plain(c.joints, (0, 0))),
             sweep_order: ManagedSlice::Owned(plain(c.bodies, 0)),
+            solver_bodies: ManagedSlice::Owned(plain(c.bodies, SolverBody::EMPTY)),
+            contact_constraints: ManagedSlice::Owned(plain(c.contacts, ContactConstraint::EMPTY)),
         }
     }
 }
@@ -258,6 +266,8 @@ pub struct WorldBuffers<const BODIES: usize, const CONTACTS: usize, const JOINTS
     joints: [Slot<Joint>; JOINTS],
     joint_pairs: [(u32, u32); JOINTS],
     sweep_order: [u32; BODIES],
+    solver_bodies: [SolverBody; BODIES],
+    contact_constraints: [ContactConstraint; CONTACTS],
 }
 
 impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffers<BODIES, CONTACTS, JOINTS> {
@@ -276,6 +286,8 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffe
             joints: [Slot::EMPTY; JOINTS],
             joint_pairs: [(0, 0); JOINTS],
             sweep_order: [0; BODIES],
+            solver_bodies: [SolverBody::EMPTY; BODIES],
+            contact_constraints: [ContactConstraint::EMPTY; CONTACTS],
         }
     }
 
@@ -292,6 +304,8 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffe
             joints: ManagedSlice::Borrowed(&mut self.joints[..]),
             joint_pairs: ManagedSlice::Borrowed(&mut self.joint_pairs[..]),
             sweep_order: ManagedSlice::Borrowed(&mut self.sweep_order[..]),
+            solver_bodies: ManagedSlice::Borrowed(&mut self.solver_bodies[..]),
+            contact_constraints: ManagedSlice::Borrowed(&mut self.contact_constraints[..]),
         }
     }
 }
@@ -335,6 +349,7 @@ pub struct World<'a> {
     pub(crate) post_step: PostStepQueue,
     pub(crate) contacts: Contacts<'a>,
     pub(crate) joints: Arena<'a, Joint, JointMarker>,
+    pub(crate) solver: Solver<'a>,
     pub(crate) constraints:
         Arena<'a, UserConstraint<'a>, ConstraintMarker, [Slot<UserConstraint<'a>>; MAX_USER_CONSTRAINTS]>,
     pub(crate) break_callback: Option<JointBreakFn>,
@@ -354,6 +369,16 @@ impl<'a> World<'a> {
         let nb = storage.bodies.len();
         if storage.proxies.len() < nb || storage.proxy_bodies.len() < nb {
             return Err(Error::InvalidOperation { what: "proxy buffers must hold one entry per body" });
+        }
+        if storage.solver_bodies.len() < nb {
+            return Err(Error::InvalidOperation {
+                what: "the solver body buffer must hold one entry per body",
+            });
+        }
+        if storage.contact_constraints.len() < storage.arbiters.len() {
+            return Err(Error::InvalidOperation {
+                what: "the contact constraint buffer must be as long as the arbiter buffer",
+            });
         }
         if storage.joint_pairs.len() < storage.joints.len() {
             return Err(Error::InvalidOperation { what: "joint pair buffer must hold one entry per joint" });
@@ -382,6 +407,11 @@ impl<'a> World<'a> {
                 joint_pairs: storage.joint_pairs,
             },
             joints: Arena::new(storage.joints),
+            solver: Solver {
+                bodies: storage.solver_bodies,
+                constraints: storage.contact_constraints,
+                count: 0,
+            },
             constraints: Arena::inline(),
             break_callback: None,
             step_count: 0,
