@@ -55,8 +55,8 @@ impl Rot {
     #[must_use]
     pub fn rotate(self, v: Vector2) -> Vector2 {
         Vector2::new(
-            self.c.sat_mul(v.x).saturating_sub(self.s.sat_mul(v.y)),
-            self.s.sat_mul(v.x).saturating_add(self.c.sat_mul(v.y)),
+            self.c.sat_mul(v.x).sat_sub(self.s.sat_mul(v.y)),
+            self.s.sat_mul(v.x).sat_add(self.c.sat_mul(v.y)),
         )
     }
 
@@ -65,8 +65,8 @@ impl Rot {
     #[must_use]
     pub fn inv_rotate(self, v: Vector2) -> Vector2 {
         Vector2::new(
-            self.c.sat_mul(v.x).saturating_add(self.s.sat_mul(v.y)),
-            self.c.sat_mul(v.y).saturating_sub(self.s.sat_mul(v.x)),
+            self.c.sat_mul(v.x).sat_add(self.s.sat_mul(v.y)),
+            self.c.sat_mul(v.y).sat_sub(self.s.sat_mul(v.x)),
         )
     }
 
@@ -75,8 +75,8 @@ impl Rot {
     #[must_use]
     pub fn compose(self, o: Self) -> Self {
         Self {
-            c: self.c.sat_mul(o.c).saturating_sub(self.s.sat_mul(o.s)),
-            s: self.s.sat_mul(o.c).saturating_add(self.c.sat_mul(o.s)),
+            c: self.c.sat_mul(o.c).sat_sub(self.s.sat_mul(o.s)),
+            s: self.s.sat_mul(o.c).sat_add(self.c.sat_mul(o.s)),
         }
     }
 
@@ -100,8 +100,8 @@ impl Rot {
     /// rotation whatever it is.
     #[must_use]
     pub fn integrate(self, delta: Scalar) -> Self {
-        let c = self.c.saturating_sub(self.s.sat_mul(delta));
-        let s = self.s.saturating_add(self.c.sat_mul(delta));
+        let c = self.c.sat_sub(self.s.sat_mul(delta));
+        let s = self.s.sat_add(self.c.sat_mul(delta));
         Self { c, s }.normalized()
     }
 
@@ -173,8 +173,8 @@ mod tests {
         let step = Scalar::lit("0.05");
         for _ in 0..10_000 {
             q = q.integrate(step);
-            let len2 = q.c.sat_mul(q.c).saturating_add(q.s.sat_mul(q.s));
-            assert!((len2.saturating_sub(ONE)).abs() < Scalar::lit("0.000000005"));
+            let len2 = q.c.sat_mul(q.c).sat_add(q.s.sat_mul(q.s));
+            assert!((len2.sat_sub(ONE)).abs() < Scalar::lit("0.000000005"));
         }
     }
 

@@ -88,7 +88,7 @@ impl Vector2 {
     #[inline]
     #[must_use]
     pub fn dot(self, o: Self) -> Scalar {
-        self.x.sat_mul(o.x).saturating_add(self.y.sat_mul(o.y))
+        self.x.sat_mul(o.x).sat_add(self.y.sat_mul(o.y))
     }
 
     /// 2D cross product of two vectors, `a × b = a.x·b.y − a.y·b.x` (a scalar: the z
@@ -96,7 +96,7 @@ impl Vector2 {
     #[inline]
     #[must_use]
     pub fn cross(self, o: Self) -> Scalar {
-        self.x.sat_mul(o.y).saturating_sub(self.y.sat_mul(o.x))
+        self.x.sat_mul(o.y).sat_sub(self.y.sat_mul(o.x))
     }
 
     /// Cross product of a vector and a scalar (z-axis), `v × s = (s·v.y, −s·v.x)`.
@@ -247,7 +247,7 @@ impl Add for Vector2 {
     type Output = Self;
     #[inline]
     fn add(self, o: Self) -> Self {
-        Self::new(self.x.saturating_add(o.x), self.y.saturating_add(o.y))
+        Self::new(self.x.sat_add(o.x), self.y.sat_add(o.y))
     }
 }
 
@@ -255,7 +255,7 @@ impl Sub for Vector2 {
     type Output = Self;
     #[inline]
     fn sub(self, o: Self) -> Self {
-        Self::new(self.x.saturating_sub(o.x), self.y.saturating_sub(o.y))
+        Self::new(self.x.sat_sub(o.x), self.y.sat_sub(o.y))
     }
 }
 

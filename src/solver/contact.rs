@@ -269,10 +269,7 @@ pub(crate) fn prepare(index: u32, arb: &Arbiter, ia: u32, ib: u32, a: &Body, b: 
         cp.tangent_impulse = src.tangent_impulse;
     }
     let [p1, p2] = &c.points;
-    c.k12 = ma
-        .saturating_add(mb)
-        .saturating_add(p1.irn[0].sat_mul(p2.rn[0]))
-        .saturating_add(p1.irn[1].sat_mul(p2.rn[1]));
+    c.k12 = ma.sat_add(mb).sat_add(p1.irn[0].sat_mul(p2.rn[0])).sat_add(p1.irn[1].sat_mul(p2.rn[1]));
     c.block = block_inverse(&c);
     c.n_m = [n * ma, n * mb];
     c.t_m = [t * ma, t * mb];
@@ -326,7 +323,7 @@ pub(crate) fn warm_start(bodies: &mut [SolverBody], constraints: &mut [ContactCo
         let count = usize::from(c.count);
         for cp in c.points.iter_mut().take(count) {
             let p = n * cp.normal_impulse + t * cp.tangent_impulse;
-            cp.total_normal_impulse = cp.total_normal_impulse.saturating_add(cp.normal_impulse);
+            cp.total_normal_impulse = cp.total_normal_impulse.sat_add(cp.normal_impulse);
             apply(a, b, ma, ia, mb, ib, cp.anchor_a, cp.anchor_b, p);
         }
     }
@@ -379,13 +376,13 @@ pub(crate) fn apply_restitution(
                     continue;
                 }
                 let vn = (b.velocity_at_offset(cp.anchor_b) - a.velocity_at_offset(cp.anchor_a)).dot(n);
-                let target = vn.saturating_add(e.sat_mul(cp.relative_velocity));
+                let target = vn.sat_add(e.sat_mul(cp.relative_velocity));
                 let impulse = cp.normal_mass.sat_mul(target).saturating_neg();
-                let new = cp.normal_impulse.saturating_add(impulse).max(ZERO);
-                let applied = new.saturating_sub(cp.normal_impulse);
+                let new = cp.normal_impulse.sat_add(impulse).max(ZERO);
+                let applied = new.sat_sub(cp.normal_impulse);
                 cp.normal_impulse = new;
                 cp.max_normal_impulse = cp.max_normal_impulse.max(applied);
-                cp.total_normal_impulse = cp.total_normal_impulse.saturating_add(applied);
+                cp.total_normal_impulse = cp.total_normal_impulse.sat_add(applied);
                 apply(a, b, ma, ia, mb, ib, cp.anchor_a, cp.anchor_b, n * applied);
             }
         }
@@ -405,10 +402,7 @@ fn effective_mass(
     d: Vector2,
 ) -> Scalar {
     let (rda, rdb) = (ra.cross(d), rb.cross(d));
-    let k = ma
-        .saturating_add(mb)
-        .saturating_add(ia.sat_mul(rda.sat_mul(rda)))
-        .saturating_add(ib.sat_mul(rdb.sat_mul(rdb)));
+    let k = ma.sat_add(mb).sat_add(ia.sat_mul(rda.sat_mul(rda))).sat_add(ib.sat_mul(rdb.sat_mul(rdb)));
     scalar::recip(k)
 }
 
@@ -427,9 +421,9 @@ fn apply(
     p: Vector2,
 ) {
     a.v -= p * ma;
-    a.w = a.w.saturating_sub(ia.sat_mul(ra.cross(p)));
+    a.w = a.w.sat_sub(ia.sat_mul(ra.cross(p)));
     b.v += p * mb;
-    b.w = b.w.saturating_add(ib.sat_mul(rb.cross(p)));
+    b.w = b.w.sat_add(ib.sat_mul(rb.cross(p)));
 }
 
 /// The inverse of the 2×2 normal mass matrix K of a two-point manifold,
@@ -441,7 +435,7 @@ fn block_inverse(c: &ContactConstraint) -> Option<[Scalar; 4]> {
     }
     let [p1, p2] = &c.points;
     let (k11, k22, k12) = (p1.normal_k, p2.normal_k, c.k12);
-    let det = k11.sat_mul(k22).saturating_sub(k12.sat_mul(k12));
+    let det = k11.sat_mul(k22).sat_sub(k12.sat_mul(k12));
     if det <= ZERO || k11.sat_mul(k11) >= det.sat_mul(Scalar::const_from_int(1000)) {
         return None;
     }
@@ -479,26 +473,26 @@ fn solve_block(
     let (l1, l2) = (p1.normal_impulse, p2.normal_impulse);
     let (k11, k22, k12) = (p1.normal_k, p2.normal_k, c.k12);
     let (v1, v2) = (relative_speed(a, b, n, p1.rn), relative_speed(a, b, n, p2.rn));
-    let (r1, r2) = (v1.saturating_add(bias1), v2.saturating_add(bias2));
+    let (r1, r2) = (v1.sat_add(bias1), v2.sat_add(bias2));
     // Each point keeps its own softness (a speculative point is rigid).
-    let (keep1, keep2) = (scalar::ONE.saturating_sub(is1), scalar::ONE.saturating_sub(is2));
-    let q1 = ms1.sat_mul(r1).saturating_sub(keep1.sat_mul(k11.sat_mul(l1).saturating_add(k12.sat_mul(l2))));
-    let q2 = ms2.sat_mul(r2).saturating_sub(keep2.sat_mul(k12.sat_mul(l1).saturating_add(k22.sat_mul(l2))));
+    let (keep1, keep2) = (scalar::ONE.sat_sub(is1), scalar::ONE.sat_sub(is2));
+    let q1 = ms1.sat_mul(r1).sat_sub(keep1.sat_mul(k11.sat_mul(l1).sat_add(k12.sat_mul(l2))));
+    let q2 = ms2.sat_mul(r2).sat_sub(keep2.sat_mul(k12.sat_mul(l1).sat_add(k22.sat_mul(l2))));
     let [i11, i21, i12, i22] = inv;
     // Case 1: both push.
-    let x1 = i11.sat_mul(q1).saturating_add(i12.sat_mul(q2)).saturating_neg();
-    let x2 = i21.sat_mul(q1).saturating_add(i22.sat_mul(q2)).saturating_neg();
+    let x1 = i11.sat_mul(q1).sat_add(i12.sat_mul(q2)).saturating_neg();
+    let x2 = i21.sat_mul(q1).sat_add(i22.sat_mul(q2)).saturating_neg();
     let x = if x1 >= ZERO && x2 >= ZERO {
         Some((x1, x2))
     } else {
         // Case 2: only the first pushes; the second must not be approaching.
         let x1 = p1.normal_mass_div(q1);
-        if x1 >= ZERO && q2.saturating_add(k12.sat_mul(x1)) >= ZERO {
+        if x1 >= ZERO && q2.sat_add(k12.sat_mul(x1)) >= ZERO {
             Some((x1, ZERO))
         } else {
             // Case 3: only the second pushes.
             let x2 = p2.normal_mass_div(q2);
-            if x2 >= ZERO && q1.saturating_add(k12.sat_mul(x2)) >= ZERO {
+            if x2 >= ZERO && q1.sat_add(k12.sat_mul(x2)) >= ZERO {
                 Some((ZERO, x2))
             } else if q1 >= ZERO && q2 >= ZERO {
                 // Case 4: neither pushes.
@@ -536,10 +530,10 @@ fn push_normal(
     new: Scalar,
 ) {
     note_approach(cp, vn, new);
-    let applied = new.saturating_sub(cp.normal_impulse);
+    let applied = new.sat_sub(cp.normal_impulse);
     cp.normal_impulse = new;
     cp.max_normal_impulse = cp.max_normal_impulse.max(applied);
-    cp.total_normal_impulse = cp.total_normal_impulse.saturating_add(applied);
+    cp.total_normal_impulse = cp.total_normal_impulse.sat_add(applied);
     apply_along(a, b, n_m, cp.irn, applied);
 }
 
@@ -562,7 +556,7 @@ type Terms = (Scalar, Scalar, Scalar);
 /// precomputed arms: (vB − vA)·d + ωB·(rB × d) − ωA·(rA × d).
 #[inline(always)]
 fn relative_speed(a: &SolverBody, b: &SolverBody, d: Vector2, r: [Scalar; 2]) -> Scalar {
-    (b.v - a.v).dot(d).saturating_add(b.w.sat_mul(r[1])).saturating_sub(a.w.sat_mul(r[0]))
+    (b.v - a.v).dot(d).sat_add(b.w.sat_mul(r[1])).sat_sub(a.w.sat_mul(r[0]))
 }
 
 /// Applies an impulse of magnitude `lambda` along the direction whose
@@ -570,9 +564,9 @@ fn relative_speed(a: &SolverBody, b: &SolverBody, d: Vector2, r: [Scalar; 2]) ->
 #[inline(always)]
 fn apply_along(a: &mut SolverBody, b: &mut SolverBody, m: [Vector2; 2], ir: [Scalar; 2], lambda: Scalar) {
     a.v -= m[0] * lambda;
-    a.w = a.w.saturating_sub(ir[0].sat_mul(lambda));
+    a.w = a.w.sat_sub(ir[0].sat_mul(lambda));
     b.v += m[1] * lambda;
-    b.w = b.w.saturating_add(ir[1].sat_mul(lambda));
+    b.w = b.w.sat_add(ir[1].sat_mul(lambda));
 }
 
 /// One pass over one constraint: normal points, then friction.
@@ -592,7 +586,7 @@ fn solve_one(
     let mut terms: [Terms; 2] = [(ZERO, scalar::ONE, ZERO); 2];
     for (term, cp) in terms.iter_mut().zip(c.points()) {
         let d = dp + (b.q.rotate(cp.local_b) - a.q.rotate(cp.local_a));
-        let s = d.dot(n).saturating_add(cp.separation);
+        let s = d.dot(n).sat_add(cp.separation);
         *term = if s > ZERO {
             // Speculative: allow closing the gap within this sub-step, no more.
             (s.sat_mul(params.inv_h), scalar::ONE, ZERO)
@@ -622,10 +616,10 @@ fn solve_one(
             let impulse = cp
                 .normal_mass
                 .sat_mul(mass_scale)
-                .sat_mul(vn.saturating_add(bias))
+                .sat_mul(vn.sat_add(bias))
                 .saturating_neg()
-                .saturating_sub(impulse_scale.sat_mul(cp.normal_impulse));
-            let new = cp.normal_impulse.saturating_add(impulse).max(ZERO);
+                .sat_sub(impulse_scale.sat_mul(cp.normal_impulse));
+            let new = cp.normal_impulse.sat_add(impulse).max(ZERO);
             push_normal(cp, a, b, n_m, vn, new);
         }
     }
@@ -635,8 +629,8 @@ fn solve_one(
         let vt = relative_speed(a, b, t, cp.rt);
         let impulse = cp.tangent_mass.sat_mul(vt).saturating_neg();
         let max_f = mu.sat_mul(cp.normal_impulse);
-        let new = scalar::clamp(cp.tangent_impulse.saturating_add(impulse), max_f.saturating_neg(), max_f);
-        let applied = new.saturating_sub(cp.tangent_impulse);
+        let new = scalar::clamp(cp.tangent_impulse.sat_add(impulse), max_f.saturating_neg(), max_f);
+        let applied = new.sat_sub(cp.tangent_impulse);
         cp.tangent_impulse = new;
         apply_along(a, b, t_m, cp.irt, applied);
     }
