@@ -259,6 +259,10 @@ impl Arbiter {
 /// slides on anything (Box2D's rule).
 #[must_use]
 pub fn mix_friction(a: Scalar, b: Scalar) -> Scalar {
+    // Equal coefficients, the common case, mix to themselves without a root.
+    if a == b {
+        return a.max(ZERO);
+    }
     scalar::sqrt(a.sat_mul(b))
 }
 

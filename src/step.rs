@@ -26,6 +26,7 @@
 //! history alone.
 
 use crate::error::Error;
+use crate::math::scalar::ScalarExt as _;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::Vector2;
 use crate::world::{compute_aabb, StepReport, World};
@@ -95,8 +96,9 @@ impl World<'_> {
             // Components are clamped first so the length cannot saturate.
             let v = b.linear_velocity;
             let v = Vector2::new(scalar::clamp(v.x, -vmax, vmax), scalar::clamp(v.y, -vmax, vmax));
-            let (dir, len) = v.normalize_and_length();
-            b.linear_velocity = if len > vmax { dir * vmax } else { v };
+            // |v|² fits: each component is at most MAX_LINEAR_SPEED_LIMIT (2048).
+            b.linear_velocity =
+                if v.length_squared() > vmax.sat_mul(vmax) { v.normalize() * vmax } else { v };
             b.angular_velocity = scalar::clamp(b.angular_velocity, -wmax, wmax);
             if !bounds.contains(b.position) {
                 b.out_of_bounds = true;
