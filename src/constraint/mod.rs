@@ -42,6 +42,7 @@ use crate::body::{Body, BodyHandle};
 use crate::error::Error;
 use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
 use crate::math::{Rect, Rot, Vector2};
+use crate::solver::SolverBody;
 use crate::world::MAX_BODY_RADIUS;
 
 /// Stiffness of the soft position correction of rods, ropes, pivots and welds, Hz
@@ -384,7 +385,7 @@ impl Joint {
     }
 
     /// Applies the impulses it ended the last sub-step with.
-    pub(crate) fn warm_start(&mut self, a: &mut Body, b: &mut Body) {
+    pub(crate) fn warm_start(&mut self, a: &mut SolverBody, b: &mut SolverBody) {
         match self.def.kind {
             JointKind::Spring { .. } | JointKind::DampedSpring { .. } => {}
             JointKind::Rod { .. } | JointKind::Rope { .. } => rod::warm_start(self, a, b),
@@ -394,7 +395,7 @@ impl Joint {
     }
 
     /// One iteration. `use_bias` is false in the relax sweep.
-    pub(crate) fn solve(&mut self, a: &mut Body, b: &mut Body, h: Scalar, use_bias: bool) {
+    pub(crate) fn solve(&mut self, a: &mut SolverBody, b: &mut SolverBody, h: Scalar, use_bias: bool) {
         match self.def.kind {
             JointKind::Spring { stiffness, rest_length } => {
                 if use_bias {
@@ -416,27 +417,34 @@ impl Joint {
 
 /// The world anchors of a joint: offsets from each centre (world orientation) and
 /// the vector between the anchor points, B − A.
-pub(crate) fn anchors(j: &Joint, a: &Body, b: &Body) -> (Vector2, Vector2, Vector2) {
-    let ra = a.rotation.rotate(j.def.anchor_a);
-    let rb = b.rotation.rotate(j.def.anchor_b);
-    let d = (b.position - a.position) + (rb - ra);
+pub(crate) fn anchors(j: &Joint, a: &SolverBody, b: &SolverBody) -> (Vector2, Vector2, Vector2) {
+    let ra = a.q.rotate(j.def.anchor_a);
+    let rb = b.q.rotate(j.def.anchor_b);
+    let d = (b.p - a.p) + (rb - ra);
     (ra, rb, d)
 }
 
 /// Applies a linear impulse `p` at offsets `ra` (negated on A) and `rb`.
-pub(crate) fn apply_linear(j: &Joint, a: &mut Body, b: &mut Body, ra: Vector2, rb: Vector2, p: Vector2) {
+pub(crate) fn apply_linear(
+    j: &Joint,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    ra: Vector2,
+    rb: Vector2,
+    p: Vector2,
+) {
     let ([ma, mb], [ia, ib]) = (j.inv_mass, j.inv_inertia);
-    a.linear_velocity -= p * ma;
-    a.angular_velocity = a.angular_velocity.saturating_sub(ia.sat_mul(ra.cross(p)));
-    b.linear_velocity += p * mb;
-    b.angular_velocity = b.angular_velocity.saturating_add(ib.sat_mul(rb.cross(p)));
+    a.v -= p * ma;
+    a.w = a.w.saturating_sub(ia.sat_mul(ra.cross(p)));
+    b.v += p * mb;
+    b.w = b.w.saturating_add(ib.sat_mul(rb.cross(p)));
 }
 
 /// Applies an angular impulse `l` (negated on A).
-pub(crate) fn apply_angular(j: &Joint, a: &mut Body, b: &mut Body, l: Scalar) {
+pub(crate) fn apply_angular(j: &Joint, a: &mut SolverBody, b: &mut SolverBody, l: Scalar) {
     let [ia, ib] = j.inv_inertia;
-    a.angular_velocity = a.angular_velocity.saturating_sub(ia.sat_mul(l));
-    b.angular_velocity = b.angular_velocity.saturating_add(ib.sat_mul(l));
+    a.w = a.w.saturating_sub(ia.sat_mul(l));
+    b.w = b.w.saturating_add(ib.sat_mul(l));
 }
 
 /// A game's constraint stored in a world.

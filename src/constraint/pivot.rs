@@ -1,11 +1,11 @@
 //! Pivot (revolute) joint: a point constraint, optional angle limits, optional motor.
 
 use super::{anchors, apply_angular, apply_linear, Joint, MaxTorque, Motor};
-use crate::body::Body;
 use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
 use crate::math::{Matrix22, Vector2};
+use crate::solver::SolverBody;
 
-pub(super) fn warm_start(j: &mut Joint, a: &mut Body, b: &mut Body) {
+pub(super) fn warm_start(j: &mut Joint, a: &mut SolverBody, b: &mut SolverBody) {
     let (ra, rb, _) = anchors(j, a, b);
     j.step_linear += j.impulse;
     apply_linear(j, a, b, ra, rb, j.impulse);
@@ -14,8 +14,8 @@ pub(super) fn warm_start(j: &mut Joint, a: &mut Body, b: &mut Body) {
 }
 
 /// The relative angle θB − θA measured from the angle at creation, in (−π, π].
-pub(super) fn relative_angle(j: &Joint, a: &Body, b: &Body) -> Scalar {
-    j.reference.inv_mul(a.rotation.inv_mul(b.rotation)).angle()
+pub(super) fn relative_angle(j: &Joint, a: &SolverBody, b: &SolverBody) -> Scalar {
+    j.reference.inv_mul(a.q.inv_mul(b.q)).angle()
 }
 
 /// +1, or −1 for a joint to a fixed world point: there the limits and the motor
@@ -36,8 +36,8 @@ pub(super) fn axial_mass(j: &Joint) -> Scalar {
 
 pub(super) fn solve(
     j: &mut Joint,
-    a: &mut Body,
-    b: &mut Body,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
     limits: Option<(Scalar, Scalar)>,
     motor: Option<Motor>,
     h: Scalar,
@@ -45,8 +45,7 @@ pub(super) fn solve(
 ) {
     let axial = axial_mass(j);
     let sign = orientation(j);
-    let relative_rate =
-        |a: &Body, b: &Body| b.angular_velocity.saturating_sub(a.angular_velocity).sat_mul(sign);
+    let relative_rate = |a: &SolverBody, b: &SolverBody| b.w.saturating_sub(a.w).sat_mul(sign);
     if let Some(m) = motor {
         // Drive the relative spin towards the target; no position error, no bias.
         let rate = relative_rate(a, b).saturating_sub(m.speed);
@@ -107,7 +106,7 @@ fn limit_step(
 }
 
 /// The point constraint shared with the weld joint: the anchors coincide.
-pub(super) fn solve_point(j: &mut Joint, a: &mut Body, b: &mut Body, use_bias: bool) {
+pub(super) fn solve_point(j: &mut Joint, a: &mut SolverBody, b: &mut SolverBody, use_bias: bool) {
     let (ra, rb, d) = anchors(j, a, b);
     let ([ma, mb], [ia, ib]) = (j.inv_mass, j.inv_inertia);
     let m = ma.saturating_add(mb);

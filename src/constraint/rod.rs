@@ -1,10 +1,10 @@
 //! Rod (fixed distance) and rope (maximum distance) between the anchors.
 
 use super::{anchors, apply_linear, Joint};
-use crate::body::Body;
 use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
+use crate::solver::SolverBody;
 
-pub(super) fn warm_start(j: &mut Joint, a: &mut Body, b: &mut Body) {
+pub(super) fn warm_start(j: &mut Joint, a: &mut SolverBody, b: &mut SolverBody) {
     let (ra, rb, d) = anchors(j, a, b);
     let p = d.normalize() * j.impulse.x;
     j.step_linear += p;
@@ -16,8 +16,8 @@ pub(super) fn warm_start(j: &mut Joint, a: &mut Body, b: &mut Body) {
 /// this sub-step). The axis follows the current anchors.
 pub(super) fn solve(
     j: &mut Joint,
-    a: &mut Body,
-    b: &mut Body,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
     length: Scalar,
     rope: bool,
     h: Scalar,

@@ -1,16 +1,16 @@
 //! Spring and damped spring: an explicit force along the line between the anchors.
 
 use super::{anchors, apply_linear, Joint};
-use crate::body::Body;
 use crate::math::scalar::{Scalar, ScalarExt as _, ZERO};
+use crate::solver::SolverBody;
 
 /// Applies F = −k·(ℓ − ℓ₀) − c·ℓ̇ along the anchor line for a sub-step of `h`
 /// seconds (once per sub-step, never in the relax sweeps: it is a force, not a
 /// constraint). Anchors that coincide have no direction and get no force.
 pub(super) fn apply(
     j: &mut Joint,
-    a: &mut Body,
-    b: &mut Body,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
     k: Scalar,
     c: Scalar,
     rest: Scalar,

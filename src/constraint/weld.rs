@@ -2,19 +2,25 @@
 
 use super::pivot::{axial_mass, relative_angle, solve_point};
 use super::{anchors, apply_angular, apply_linear, Joint};
-use crate::body::Body;
 use crate::math::scalar::{self, ScalarExt as _, ZERO};
+use crate::solver::SolverBody;
 
-pub(super) fn warm_start(j: &mut Joint, a: &mut Body, b: &mut Body) {
+pub(super) fn warm_start(j: &mut Joint, a: &mut SolverBody, b: &mut SolverBody) {
     let (ra, rb, _) = anchors(j, a, b);
     j.step_linear += j.impulse;
     apply_linear(j, a, b, ra, rb, j.impulse);
     apply_angular(j, a, b, j.angular_impulse);
 }
 
-pub(super) fn solve(j: &mut Joint, a: &mut Body, b: &mut Body, _h: crate::Scalar, use_bias: bool) {
+pub(super) fn solve(
+    j: &mut Joint,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    _h: crate::Scalar,
+    use_bias: bool,
+) {
     let axial = axial_mass(j);
-    let rate = b.angular_velocity.saturating_sub(a.angular_velocity);
+    let rate = b.w.saturating_sub(a.w);
     let (bias, mass_scale, impulse_scale) = if use_bias {
         (relative_angle(j, a, b).sat_mul(j.soft.bias_rate), j.soft.mass_scale, j.soft.impulse_scale)
     } else {

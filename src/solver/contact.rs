@@ -81,6 +81,12 @@ impl SolverBody {
         b.rotation = self.q;
     }
 
+    /// Velocity of the point at offset `r` from the centre of mass.
+    #[inline]
+    pub(crate) fn velocity_at_offset(&self, r: Vector2) -> Vector2 {
+        self.v + Vector2::cross_sv(self.w, r)
+    }
+
     /// Takes the velocity and pose from the body (after joints moved it).
     #[inline]
     pub(crate) fn reload(&mut self, b: &Body) {
@@ -281,7 +287,17 @@ fn pair<'b>(
     bodies: &'b mut [SolverBody],
     c: &ContactConstraint,
 ) -> Option<(&'b mut SolverBody, &'b mut SolverBody)> {
-    let (i, j) = (c.a as usize, c.b as usize);
+    pair_at(bodies, c.a, c.b)
+}
+
+/// Bodies `i` and `j`, mutably; `None` if they are the same or out of range.
+#[inline(always)]
+pub(crate) fn pair_at(
+    bodies: &mut [SolverBody],
+    i: u32,
+    j: u32,
+) -> Option<(&mut SolverBody, &mut SolverBody)> {
+    let (i, j) = (i as usize, j as usize);
     if i < j {
         let (lo, hi) = bodies.split_at_mut(j);
         Some((lo.get_mut(i)?, hi.first_mut()?))

@@ -47,7 +47,7 @@ pub(crate) use contact::inverse_mass;
 use contact::StepParams;
 use managed::ManagedSlice;
 
-use crate::body::Body;
+use crate::constraint::Joint;
 use crate::math::scalar::ScalarExt as _;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::Vector2;
@@ -93,9 +93,10 @@ impl World<'_> {
         };
         self.load_solver(inv_n);
         self.prepare_constraints(dt, h);
-        // Joints and the game's constraints work on `Body`; when there are any,
-        // the solver's copy is written to the bodies around each of their passes.
-        let coupled = !self.joints.is_empty() || !self.constraints.is_empty();
+        // The built-in joints work on the solver's bodies; the game's constraints
+        // see `Body`, so when there are any the solver's copy is written to the
+        // bodies around their pass.
+        let user = !self.constraints.is_empty();
         let (vmax, wmax) = (self.def.max_linear_speed, self.angular_limit(dt));
         for substep in 0..n {
             let (bodies, _) = self.solver.split();
@@ -103,16 +104,12 @@ impl World<'_> {
                 sb.v += sb.pending_v;
                 sb.w = sb.w.saturating_add(sb.pending_w);
             }
-            if coupled {
-                self.joint_pass(|w| w.for_each_joint(|j, a, b| j.warm_start(a, b)));
-            }
+            self.for_each_joint(|j, a, b| j.warm_start(a, b));
             let (bodies, constraints) = self.solver.split();
             contact::warm_start(bodies, constraints);
-            if coupled {
-                self.joint_pass(|w| {
-                    w.for_each_joint(|j, a, b| j.solve(a, b, h, true));
-                    w.solve_user_constraints(h);
-                });
+            self.for_each_joint(|j, a, b| j.solve(a, b, h, true));
+            if user {
+                self.joint_pass(|w| w.solve_user_constraints(h));
             }
             let (bodies, constraints) = self.solver.split();
             contact::solve(bodies, constraints, &params, true, false, false);
@@ -131,9 +128,7 @@ impl World<'_> {
             // ones, so no pair is always solved first; the last sub-step adds a
             // sweep the other way (symmetric Gauss-Seidel), which drains what the
             // push-out left in the velocities the step ends with.
-            if coupled {
-                self.joint_pass(|w| w.for_each_joint_in(true, |j, a, b| j.solve(a, b, h, false)));
-            }
+            self.for_each_joint_in(true, |j, a, b| j.solve(a, b, h, false));
             let (bodies, constraints) = self.solver.split();
             let odd = substep % 2 == 1;
             contact::solve(bodies, constraints, &params, false, odd, odd);
@@ -219,7 +214,7 @@ impl World<'_> {
 
     /// Runs `f` on every joint with its two bodies, in joint-slot order. A joint
     /// to a world point gets a static stand-in body for B.
-    fn for_each_joint(&mut self, f: impl FnMut(&mut crate::constraint::Joint, &mut Body, &mut Body)) {
+    fn for_each_joint(&mut self, f: impl FnMut(&mut Joint, &mut SolverBody, &mut SolverBody)) {
         self.for_each_joint_in(false, f);
     }
 
@@ -227,9 +222,10 @@ impl World<'_> {
     fn for_each_joint_in(
         &mut self,
         reverse: bool,
-        mut f: impl FnMut(&mut crate::constraint::Joint, &mut Body, &mut Body),
+        mut f: impl FnMut(&mut Joint, &mut SolverBody, &mut SolverBody),
     ) {
-        let World { bodies, joints, .. } = self;
+        let World { joints, solver, .. } = self;
+        let bodies: &mut [SolverBody] = &mut solver.bodies;
         let used = joints.slots_used();
         for k in 0..used {
             let i = if reverse { used.saturating_sub(1).saturating_sub(k) } else { k };
@@ -237,14 +233,13 @@ impl World<'_> {
             let ia = j.def.body_a.index();
             match j.def.body_b {
                 Some(hb) => {
-                    if let Some((a, b)) = bodies.get2_at_mut(ia, hb.index()) {
+                    if let Some((a, b)) = contact::pair_at(bodies, ia, hb.index()) {
                         f(j, a, b);
                     }
                 }
                 None => {
-                    let mut ground = crate::constraint::ground();
-                    ground.position = Vector2::ZERO;
-                    if let Some(a) = bodies.get_at_mut(ia) {
+                    let mut ground = SolverBody::EMPTY;
+                    if let Some(a) = bodies.get_mut(ia as usize) {
                         f(j, a, &mut ground);
                     }
                 }
