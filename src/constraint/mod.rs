@@ -41,6 +41,7 @@ use crate::arena::Handle;
 use crate::body::{Body, BodyHandle};
 use crate::error::Error;
 use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
+use crate::math::Matrix22;
 use crate::math::{Rect, Rot, Vector2};
 use crate::solver::SolverBody;
 use crate::world::MAX_BODY_RADIUS;
@@ -224,16 +225,20 @@ pub struct Joint {
     pub(crate) angular_impulse: Scalar,
     pub(crate) motor_impulse: Scalar,
     pub(crate) limit_impulse: Scalar,
-    /// Linear impulse applied over this step, summed over the sub-steps (N·s).
+    /// Linear impulse applied over this step, summed over the sub-steps (N·s);
+    /// its magnitude is what breaking compares.
     pub(crate) step_linear: Vector2,
-    /// Its magnitude after the step, what breaking compares (N·s).
-    pub(crate) step_impulse: Scalar,
     /// Broke this step; removed after it.
     pub(crate) broken: bool,
     // Per-step solver data (derived).
     pub(crate) soft: crate::solver::Softness,
     pub(crate) inv_mass: [Scalar; 2],
     pub(crate) inv_inertia: [Scalar; 2],
+    /// 1 / (iA + iB): the mass against relative rotation (pivot, weld).
+    pub(crate) axial_mass: Scalar,
+    /// The inverse of the point constraint's 2×2 mass matrix at the start of the
+    /// step (pivot, weld); `None` when singular.
+    pub(crate) point_mass: Option<Matrix22>,
 }
 
 impl Joint {
@@ -248,7 +253,7 @@ impl Joint {
     /// rest it is m·g·dt.
     #[must_use]
     pub fn step_impulse(&self) -> Scalar {
-        self.step_impulse
+        self.step_linear.length()
     }
 
     /// Changes the motor of a pivot (no effect on other kinds).
@@ -359,11 +364,12 @@ impl Joint {
             motor_impulse: ZERO,
             limit_impulse: ZERO,
             step_linear: Vector2::ZERO,
-            step_impulse: ZERO,
             broken: false,
             soft: crate::solver::Softness::new(ZERO, ZERO, ZERO),
             inv_mass: [ZERO; 2],
             inv_inertia: [ZERO; 2],
+            axial_mass: ZERO,
+            point_mass: None,
         }
     }
 
@@ -373,15 +379,27 @@ impl Joint {
         let (mb, ib) = crate::solver::inverse_mass(b);
         self.inv_mass = [ma, mb];
         self.inv_inertia = [ia, ib];
-        let hertz = JOINT_HERTZ.min(scalar::recip(h).sat_mul(Scalar::lit("0.25")));
+        // Divisions are slow in fixed point: the masses are inverted once per
+        // step, at the step's anchors, as Box2D v2 does (v3 re-solves the 2×2
+        // system every iteration, which here would cost two divisions a time).
+        self.axial_mass = scalar::recip(ia.saturating_add(ib));
+        self.point_mass = if matches!(self.def.kind, JointKind::Pivot { .. } | JointKind::Weld) {
+            let ra = a.rotation.rotate(self.def.anchor_a);
+            let rb = b.rotation.rotate(self.def.anchor_b);
+            point_mass_inverse(ma, ia, ra, mb, ib, rb)
+        } else {
+            None
+        };
+        const QUARTER: Scalar = Scalar::lit("0.25");
+        let hertz = JOINT_HERTZ.min(scalar::recip(h).sat_mul(QUARTER));
         self.soft = crate::solver::Softness::new(hertz, JOINT_DAMPING_RATIO, h);
         self.step_linear = Vector2::ZERO;
     }
 
     /// After the sub-steps: the step's impulse magnitude; true when it breaks.
     pub(crate) fn finish_step(&mut self) -> bool {
-        self.step_impulse = self.step_linear.length();
-        self.def.break_impulse.is_some_and(|limit| self.step_impulse > limit)
+        // The magnitude costs a square root: only joints that can break need it.
+        self.def.break_impulse.is_some_and(|limit| self.step_linear.length() > limit)
     }
 
     /// Applies the impulses it ended the last sub-step with.
@@ -422,6 +440,30 @@ pub(crate) fn anchors(j: &Joint, a: &SolverBody, b: &SolverBody) -> (Vector2, Ve
     let rb = b.q.rotate(j.def.anchor_b);
     let d = (b.p - a.p) + (rb - ra);
     (ra, rb, d)
+}
+
+/// The inverse of K = (mA + mB)·I + iA·[rA]ᵀ[rA] + iB·[rB]ᵀ[rB], the mass matrix
+/// of a point-to-point constraint with arms `ra`, `rb`, each entry divided
+/// exactly (the determinant is tiny for heavy bodies, where 1/det would lose
+/// the digits); `None` when singular.
+fn point_mass_inverse(
+    ma: Scalar,
+    ia: Scalar,
+    ra: Vector2,
+    mb: Scalar,
+    ib: Scalar,
+    rb: Vector2,
+) -> Option<Matrix22> {
+    let m = ma.saturating_add(mb);
+    let k11 = m.saturating_add(ia.sat_mul(ra.y.sat_mul(ra.y))).saturating_add(ib.sat_mul(rb.y.sat_mul(rb.y)));
+    let k12 = ia.sat_mul(ra.x.sat_mul(ra.y)).saturating_add(ib.sat_mul(rb.x.sat_mul(rb.y))).saturating_neg();
+    let k22 = m.saturating_add(ia.sat_mul(ra.x.sat_mul(ra.x))).saturating_add(ib.sat_mul(rb.x.sat_mul(rb.x)));
+    let det = k11.sat_mul(k22).saturating_sub(k12.sat_mul(k12));
+    if det <= ZERO {
+        return None;
+    }
+    let off = scalar::div(k12.saturating_neg(), det);
+    Some(Matrix22::new(scalar::div(k22, det), off, off, scalar::div(k11, det)))
 }
 
 /// Applies a linear impulse `p` at offsets `ra` (negated on A) and `rb`.

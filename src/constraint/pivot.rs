@@ -2,7 +2,7 @@
 
 use super::{anchors, apply_angular, apply_linear, Joint, MaxTorque, Motor};
 use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
-use crate::math::{Matrix22, Vector2};
+use crate::math::Vector2;
 use crate::solver::SolverBody;
 
 pub(super) fn warm_start(j: &mut Joint, a: &mut SolverBody, b: &mut SolverBody) {
@@ -29,11 +29,6 @@ fn orientation(j: &Joint) -> Scalar {
     }
 }
 
-/// 1 / (iA + iB): the inertia the pair presents to a relative rotation.
-pub(super) fn axial_mass(j: &Joint) -> Scalar {
-    scalar::recip(j.inv_inertia[0].saturating_add(j.inv_inertia[1]))
-}
-
 pub(super) fn solve(
     j: &mut Joint,
     a: &mut SolverBody,
@@ -43,7 +38,7 @@ pub(super) fn solve(
     h: Scalar,
     use_bias: bool,
 ) {
-    let axial = axial_mass(j);
+    let axial = j.axial_mass;
     let sign = orientation(j);
     let relative_rate = |a: &SolverBody, b: &SolverBody| b.w.saturating_sub(a.w).sat_mul(sign);
     if let Some(m) = motor {
@@ -108,19 +103,14 @@ fn limit_step(
 /// The point constraint shared with the weld joint: the anchors coincide.
 pub(super) fn solve_point(j: &mut Joint, a: &mut SolverBody, b: &mut SolverBody, use_bias: bool) {
     let (ra, rb, d) = anchors(j, a, b);
-    let ([ma, mb], [ia, ib]) = (j.inv_mass, j.inv_inertia);
-    let m = ma.saturating_add(mb);
-    let k11 = m.saturating_add(ia.sat_mul(ra.y.sat_mul(ra.y))).saturating_add(ib.sat_mul(rb.y.sat_mul(rb.y)));
-    let k12 = ia.sat_mul(ra.x.sat_mul(ra.y)).saturating_add(ib.sat_mul(rb.x.sat_mul(rb.y))).saturating_neg();
-    let k22 = m.saturating_add(ia.sat_mul(ra.x.sat_mul(ra.x))).saturating_add(ib.sat_mul(rb.x.sat_mul(rb.x)));
-    let k = Matrix22::new(k11, k12, k12, k22);
+    let Some(mass) = j.point_mass else { return };
     let rate = b.velocity_at_offset(rb) - a.velocity_at_offset(ra);
     let (bias, mass_scale, impulse_scale) = if use_bias {
         (d * j.soft.bias_rate, j.soft.mass_scale, j.soft.impulse_scale)
     } else {
         (Vector2::ZERO, scalar::ONE, ZERO)
     };
-    let Some(solved) = k.solve(rate + bias) else { return };
+    let solved = mass * (rate + bias);
     let impulse = -(solved * mass_scale) - j.impulse * impulse_scale;
     j.impulse += impulse;
     j.step_linear += impulse;

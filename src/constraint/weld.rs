@@ -1,6 +1,6 @@
 //! Weld joint: the pivot's point constraint plus a fixed relative angle.
 
-use super::pivot::{axial_mass, relative_angle, solve_point};
+use super::pivot::{relative_angle, solve_point};
 use super::{anchors, apply_angular, apply_linear, Joint};
 use crate::math::scalar::{self, ScalarExt as _, ZERO};
 use crate::solver::SolverBody;
@@ -19,7 +19,7 @@ pub(super) fn solve(
     _h: crate::Scalar,
     use_bias: bool,
 ) {
-    let axial = axial_mass(j);
+    let axial = j.axial_mass;
     let rate = b.w.saturating_sub(a.w);
     let (bias, mass_scale, impulse_scale) = if use_bias {
         (relative_angle(j, a, b).sat_mul(j.soft.bias_rate), j.soft.mass_scale, j.soft.impulse_scale)
