@@ -302,7 +302,7 @@ fn ratio(a: Option<f64>, b: Option<f64>) -> String {
 }
 
 fn memory_report(large: &Scene) {
-    use arphysics::{Arbiter, Body, Joint, PolygonPath, Proxy, Slot};
+    use arphysics::{Arbiter, Body, ContactConstraint, Joint, PolygonPath, Proxy, Slot, SolverBody};
     use std::mem::size_of;
     let body = size_of::<Slot<Body>>();
     // Broad-phase scratch: the proxy, its body slot, the sweep order.
@@ -311,8 +311,10 @@ fn memory_report(large: &Scene) {
     let pair = size_of::<(u32, u32)>();
     let path = size_of::<Slot<PolygonPath>>();
     let joint = size_of::<Slot<Joint>>() + pair;
-    let per_body = body + proxy;
-    let per_contact = 2 * arbiter + pair;
+    let solver_body = size_of::<SolverBody>();
+    let constraint = size_of::<ContactConstraint>();
+    let per_body = body + proxy + solver_body;
+    let per_contact = 2 * arbiter + pair + constraint;
     let c = engines::ar::capacities(large);
     let total = c.bodies * per_body + c.paths * path + c.contacts * per_contact + c.joints * joint;
     let world = size_of::<arphysics::World<'static>>();
@@ -321,10 +323,12 @@ fn memory_report(large: &Scene) {
     println!("|---|---|");
     println!("| `Slot<Body>` | {body} |");
     println!("| broad-phase scratch per body (`Proxy` + body slot `u32` + sweep order `u32`) | {proxy} |");
+    println!("| solver's copy of the body (`SolverBody`) | {solver_body} |");
     println!("| **per body** | **{per_body}** |");
     println!("| `Arbiter` | {arbiter} |");
+    println!("| solver's contact constraint (`ContactConstraint`) | {constraint} |");
     println!(
-        "| **per contact** (2 × `Arbiter`: current and next buffer, + candidate pair) | **{per_contact}** |"
+        "| **per contact** (2 × `Arbiter`: current and next buffer, + candidate pair + constraint) | **{per_contact}** |"
     );
     println!("| `Slot<PolygonPath>` (per shared path) | {path} |");
     println!("| per joint (`Slot<Joint>` + pair) | {joint} |");
