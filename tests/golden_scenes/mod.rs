@@ -26,9 +26,9 @@ pub const GOLDEN_CORE_SCENE: u64 = 0xc09d_9251_1e80_f14c;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_PYRAMID: u64 = 0x522e_e7f3_c165_a5ca;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_MIXED: u64 = 0x185d_d731_9b7e_1868;
+pub const GOLDEN_MIXED: u64 = 0x63fd_cdaa_9c3c_5190;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_LONG: u64 = 0xfd76_9182_28bf_a8c7;
+pub const GOLDEN_LONG: u64 = 0x885a_742e_e0fc_4b80;
 
 /// Steps of the core scene.
 pub const CORE_STEPS: u32 = 600;
