@@ -12,7 +12,8 @@
 //!    `contact_push_speed`; speculative points, still apart, only stop the bodies
 //!    from closing the gap within the sub-step), in pair order, with both points
 //!    of a two-point manifold solved together as a 2×2 block (an exact linear
-//!    complementarity solve, as in Box2D v2.4),
+//!    complementarity solve, as in Box2D v2.4, of the system whose Gauss-Seidel
+//!    step is Box2D v3's per-point soft update: each point its own spring),
 //! 4. integrates positions,
 //! 5. relaxes: one sweep without the position bias, so the push-out does not
 //!    leave energy behind; forward in even sub-steps, in reverse in odd ones, and
@@ -91,7 +92,7 @@ impl World<'_> {
             static_soft: Softness::new(hertz.sat_mul(scalar::TWO), zeta, h),
             push_speed: self.def.contact_push_speed,
         };
-        self.load_solver(inv_n);
+        self.load_solver(inv_n, &params);
         self.prepare_constraints(dt, h);
         // Joints and the game's constraints work on `Body`; when there are any,
         // the solver's copy is written to the bodies around each of their passes.
@@ -156,7 +157,7 @@ impl World<'_> {
 
     /// Copies the bodies into the solver's array and builds the contact
     /// constraints of the arbiters solved this step, in arbiter order.
-    fn load_solver(&mut self, inv_n: Scalar) {
+    fn load_solver(&mut self, inv_n: Scalar, params: &StepParams) {
         let World { bodies, contacts, solver, .. } = self;
         let sbodies: &mut [SolverBody] = &mut solver.bodies;
         for (i, b) in bodies.iter() {
@@ -175,7 +176,7 @@ impl World<'_> {
             };
             // The constraint buffer is as long as the arbiter buffer.
             let Some(slot) = solver.constraints.get_mut(count) else { break };
-            *slot = contact::prepare(k as u32, arb, arb.body_a.index(), arb.body_b.index(), a, b);
+            *slot = contact::prepare(k as u32, arb, (arb.body_a.index(), arb.body_b.index()), (a, b), params);
             count = count.saturating_add(1);
         }
         solver.count = count;

@@ -24,11 +24,11 @@ use arphysics::{
 /// change to one must be deliberate and explained in its commit message.
 pub const GOLDEN_CORE_SCENE: u64 = 0xc09d_9251_1e80_f14c;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_PYRAMID: u64 = 0x522e_e7f3_c165_a5ca;
+pub const GOLDEN_PYRAMID: u64 = 0x3be7_ba12_afe0_6ca6;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_MIXED: u64 = 0x63fd_cdaa_9c3c_5190;
+pub const GOLDEN_MIXED: u64 = 0xf0f0_6d02_475e_4a06;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_LONG: u64 = 0x885a_742e_e0fc_4b80;
+pub const GOLDEN_LONG: u64 = 0x5362_3929_5c5c_a31e;
 
 /// Steps of the core scene.
 pub const CORE_STEPS: u32 = 600;
