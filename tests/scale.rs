@@ -1,6 +1,8 @@
 //! Quality holds at scale: Box2D v3's large_pyramid (100 rows, 5,050 boxes of 1 m,
 //! density 1, friction 0.6, on a static 200 × 2 m ground) after 1,000 steps of
-//! 1/60 s. Release only: it is ~1,000 steps of a 5,000-body world.
+//! 1/60 s. Release only (`cargo test --release` runs it, ~45 s; the debug build
+//! skips it): it is 1,000 steps of a 5,000-body world. Measured: drift 0.0367 m,
+//! sag 0.7340 m, largest speed 0.0003 m/s.
 //! Box2D v3 on the same scene: drift 0.017 m, sag 0.73 m, largest speed 0.022 m/s.
 
 use arphysics::{
@@ -12,8 +14,10 @@ fn s(x: f64) -> Scalar {
 }
 
 #[test]
-#[ignore = "not yet met (issue 7): measured drift 0.108 m, sag 1.29 m, speed 0.049 m/s, and ~4 min in release; \
-            run with --release -- --ignored"]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "release only: 1,000 steps of 5,050 boxes take ~45 s in release, far longer in debug"
+)]
 fn large_pyramid_after_1000_steps() {
     let v = |x: f64, y: f64| Vector2::new(s(x), s(y));
     let bounds = Rect::from_corners(v(-500.0, -100.0), v(500.0, 500.0));

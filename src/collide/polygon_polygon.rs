@@ -34,9 +34,10 @@ use crate::math::{Rot, Scalar, Transform, Vector2};
 ///
 /// Without it, two nearly equal axes (a box resting flat on a box of the same
 /// width, a polygon rotating through the symmetric pose) would let rounding pick
-/// A's face one step and B's the next. The normal would then flip between two
-/// nearly equal directions and the feature ids would change, throwing away the
-/// solver's warm-start impulses: visible jitter in resting stacks. Box2D v2.4
+/// A's face one step and B's the next, and the normal would flip between two
+/// nearly equal directions. (The feature ids do not depend on which face is the
+/// reference, so a flip keeps the warm-start impulses; see
+/// [`collide_polygons`].) Box2D v2.4
 /// uses 0.1 × its linear slop (0.005 m), and this is that value (Box2D v3 keeps
 /// only the tie-break towards A). The tolerance is absolute rather than relative
 /// because fixed-point rounding is absolute, and because the flip-flop matters
@@ -45,8 +46,6 @@ use crate::math::{Rot, Scalar, Transform, Vector2};
 /// least one by at most this amount.
 pub const REFERENCE_FACE_TOLERANCE: Scalar = Scalar::lit("0.0005");
 
-/// Feature id flag: the reference face belongs to polygon B.
-const ID_REFERENCE_IS_B: u16 = 1 << 15;
 /// Feature id flag: a vertex–vertex point (both indices are vertex indices).
 const ID_VERTEX_PAIR: u16 = 1 << 14;
 
@@ -66,18 +65,22 @@ const _: () = assert!(MAX_POLYGON_VERTICES <= 16);
 /// lower edge index, equally anti-parallel incident edges to the lower index,
 /// equally good polygons to A (see [`REFERENCE_FACE_TOLERANCE`]). Two clipped
 /// points at exactly the same place (corners touching exactly) are merged into
-/// one. Points come in a fixed order: first the one from the incident edge's
-/// second vertex (for a face contact, the end nearer the reference face's first
-/// vertex), then the one from its first vertex.
+/// one. Points come in a fixed order, end 0 before end 1 (below).
 ///
 /// # Feature ids
-/// Bit 15 is set when the reference face is B's. For a face contact, bits 8–11
-/// hold the reference edge index, bits 4–7 the incident edge index, and bit 0
-/// which end of the incident edge the point comes from (0: its second vertex,
-/// near the reference face's first vertex; 1: its first vertex), so an id holds
-/// while the same two edges touch, whether or not the end is clipped. For a
-/// vertex–vertex point bit 14 is set, and bits 8–11 and 4–7 hold the reference
-/// and incident vertex indices.
+/// An id names features of A and of B, never "reference" and "incident", so it
+/// does not change when the reference face passes from one polygon to the other
+/// (two boxes resting face to face with a slight relative tilt do that: the
+/// better axis changes side as the tilt changes sign). For a face contact, bits
+/// 8–11 hold A's edge index, bits 4–7 B's, and bit 0 which end of the overlap
+/// the point is at: 0 at A's edge start vertex (which, the edges facing each
+/// other, is also the end of B's edge end vertex), 1 at the other. An id holds
+/// while the same two edges touch, whether or not the end is clipped and
+/// whichever face is the reference; warm starting depends on it (a 100-row box
+/// pyramid flips hundreds of reference faces a step while it settles). For a
+/// vertex–vertex point bit 14 is set, and bits 8–11 and 4–7 hold A's and B's
+/// vertex indices. Box2D v3 names its points by an A index and a B index in the
+/// same way.
 ///
 /// Degenerate polygons (no vertices) give an empty manifold.
 #[must_use]
@@ -116,7 +119,7 @@ pub fn collide_polygons(
             incident: poly_a,
             incident_vertices: verts_a_in_b,
             incident_rotation: a_in_b.q,
-            id_flag: ID_REFERENCE_IS_B,
+            reference_is_b: true,
         }
     } else {
         Reference {
@@ -126,7 +129,7 @@ pub fn collide_polygons(
             incident: poly_b,
             incident_vertices: verts_b_in_a,
             incident_rotation: b_in_a.q,
-            id_flag: 0,
+            reference_is_b: false,
         }
     };
     let mut points = [LocalPoint::default(); MAX_MANIFOLD_POINTS];
@@ -184,11 +187,19 @@ struct Reference<'a> {
     incident_vertices: &'a [Vector2],
     /// Its rotation relative to the reference polygon.
     incident_rotation: Rot,
-    /// `ID_REFERENCE_IS_B` or 0.
-    id_flag: u16,
+    /// The reference face is polygon B's.
+    reference_is_b: bool,
 }
 
 impl Reference<'_> {
+    /// The feature id bits naming index `reference` of the reference polygon and
+    /// index `incident` of the incident one: A's in bits 8–11, B's in bits 4–7,
+    /// whichever polygon owns the reference face.
+    fn pair_id(&self, reference: usize, incident: usize) -> u16 {
+        let (a, b) = if self.reference_is_b { (incident, reference) } else { (reference, incident) };
+        ((a as u16 & 0xF) << 8) | ((b as u16 & 0xF) << 4)
+    }
+
     /// Fills `out` with the contact points (local to the reference polygon) and
     /// returns the local normal and the number of points, or `None` for no contact.
     fn contact(
@@ -233,7 +244,13 @@ impl Reference<'_> {
         let (tau1, tau2) = (t.dot(i1 - v1), t.dot(i2 - v1));
         let outside_low = tau1 < Scalar::ZERO && tau2 < Scalar::ZERO;
         let outside_high = tau1 > length && tau2 > length;
-        let base_id = self.id_flag | ((self.edge as u16 & 0xF) << 8) | ((k1 as u16 & 0xF) << 4);
+        // The overlap's two ends are named from A's and B's edges, not from the
+        // reference face: end 0 is the end of A's edge start vertex (and of B's
+        // edge end vertex, the edges being anti-parallel), end 1 the other. With
+        // A's face as reference that is the incident edge's second vertex (`i2`),
+        // with B's its first (`i1`).
+        let base_id = self.pair_id(self.edge, k1);
+        let (id2, id1) = if self.reference_is_b { (base_id | 1, base_id) } else { (base_id, base_id | 1) };
         let face_point = |p: Vector2, id: u16| {
             let separation = n.dot(p - v1);
             LocalPoint { point: p - n * half(separation), separation, id }
@@ -247,19 +264,20 @@ impl Reference<'_> {
             if self.separation > Scalar::ZERO {
                 return None;
             }
-            let (end2, end1) = (face_point(i2, base_id), face_point(i1, base_id | 1));
+            let (end2, end1) = (face_point(i2, id2), face_point(i1, id1));
             let deeper = if end2.separation <= end1.separation { end2 } else { end1 };
             return single(n, deeper, margin, out);
         }
         let p1 = clip_end(i1, i2, tau1, tau2, length);
         let p2 = clip_end(i2, i1, tau2, tau1, length);
 
+        let ends = if self.reference_is_b { [(p1, id1), (p2, id2)] } else { [(p2, id2), (p1, id1)] };
         let mut count = 0;
-        for (p, id) in [(p2, base_id), (p1, base_id | 1)] {
+        for (k, (p, id)) in ends.into_iter().enumerate() {
             let point = face_point(p, id);
             // `p1 == p2` only when the strip and the edge meet at a single point
             // (corners touching exactly): one point, not two identical ones.
-            let duplicate = count == 1 && p == p2;
+            let duplicate = k == 1 && count == 1 && p1 == p2;
             if point.separation <= margin && !duplicate {
                 if let Some(slot) = out.get_mut(count) {
                     *slot = point;
@@ -297,7 +315,7 @@ impl Reference<'_> {
                     continue;
                 }
                 let (direction, distance) = direction_and_length(d)?;
-                let id = self.id_flag | ID_VERTEX_PAIR | ((ia as u16 & 0xF) << 8) | ((ib as u16 & 0xF) << 4);
+                let id = ID_VERTEX_PAIR | self.pair_id(ia, ib);
                 let point = LocalPoint { point: a + direction * half(distance), separation: distance, id };
                 return Some((direction, point));
             }
@@ -426,7 +444,11 @@ mod tests {
         // Same reference face, same frame: the same numbers to the last bit.
         assert_eq!((q.point, q.separation), (p.point, p.separation));
         assert_eq!((q.anchor_a, q.anchor_b), (p.anchor_b, p.anchor_a));
-        assert_eq!(q.id, p.id | ID_REFERENCE_IS_B);
+        // The id names A's and B's features, so it follows the arguments: the
+        // ground's edge 2 and the box's edge 0 trade places, and the corner (the
+        // end of the ground edge's end vertex, 1) is at the box edge's start
+        // vertex (0).
+        assert_eq!((p.id, q.id), (0x201, 0x020));
     }
 
     #[test]
@@ -434,13 +456,57 @@ mod tests {
         // A small box poking down into a wide box B from above, rotated: B's top
         // face is clearly the best axis, and it is B's.
         let xf_a = Transform::new(v("0", "2.3"), tilted());
+        // (A's faces are tilted: only B's top face gives exactly −y.)
         let m = collide_polygons(&rect(2, 2), xf_a, &rect(4, 2), at("0", "0"), ZERO);
         assert_eq!(m.normal, -Vector2::Y);
-        assert_eq!(m.points[0].id & ID_REFERENCE_IS_B, ID_REFERENCE_IS_B);
-        // Equal axes (two boxes face to face) keep A's face.
-        let m = collide_polygons(&rect(2, 2), at("0", "1.9"), &rect(4, 2), at("0", "0"), ZERO);
-        assert_eq!(m.normal, -Vector2::Y);
-        assert_eq!(m.points[0].id & ID_REFERENCE_IS_B, 0);
+        // A slight tilt of the upper box: A's face is the reference while it
+        // is not clearly worse.
+        let xf_b = Transform::new(v("1", "1.95"), small_tilt("0.0004"));
+        let m = collide_polygons(&rect(2, 2), at("0", "0"), &rect(2, 2), xf_b, ZERO);
+        assert_eq!(m.normal, Vector2::Y);
+    }
+
+    /// A rotation by about `tan` radians.
+    fn small_tilt(tan: &str) -> Rot {
+        Rot::from_direction(v("1", tan)).unwrap_or_default()
+    }
+
+    #[test]
+    fn ids_do_not_depend_on_which_face_is_the_reference() {
+        // Box B rests half over box A, as in a brick pyramid, 5 cm deep. Tilted
+        // one way, A's top face is the better axis; tilted the other way, by
+        // more than the tolerance, B's bottom face is. The same two edges
+        // touch, so the points keep their ids and their order.
+        let a = at("0", "0");
+        let pos = collide_polygons(
+            &rect(2, 2),
+            a,
+            &rect(2, 2),
+            Transform::new(v("1", "1.95"), small_tilt("0.002")),
+            ZERO,
+        );
+        let neg = collide_polygons(
+            &rect(2, 2),
+            a,
+            &rect(2, 2),
+            Transform::new(v("1", "1.95"), small_tilt("-0.002")),
+            ZERO,
+        );
+        let within = |p: Vector2, q: Vector2| (p - q).length() < Scalar::lit("0.01");
+        // B's bottom normal, negated, is tilted: the reference face changed.
+        assert_eq!(pos.normal, Vector2::Y);
+        assert!(neg.normal != Vector2::Y && within(neg.normal, Vector2::Y), "{:?}", neg.normal);
+        assert_eq!((pos.count, neg.count), (2, 2));
+        // A's top edge is edge 2, B's bottom edge is edge 0.
+        assert_eq!((pos.points[0].id, pos.points[1].id), (0x200, 0x201));
+        assert_eq!((neg.points[0].id, neg.points[1].id), (0x200, 0x201));
+        for (p, q) in pos.points().iter().zip(neg.points()) {
+            assert!(within(p.point, q.point), "{:?} {:?}", p.point, q.point);
+        }
+        // End 0 is at A's edge start vertex, the top-right corner (1, 1); end 1
+        // at B's bottom-left corner, over A's centre.
+        assert!(within(pos.points[0].point, v("1", "0.975")), "{:?}", pos.points[0].point);
+        assert!(within(pos.points[1].point, v("0", "0.975")), "{:?}", pos.points[1].point);
     }
 
     #[test]
@@ -546,7 +612,7 @@ mod tests {
             incident: &small,
             incident_vertices: &verts[..4],
             incident_rotation: Rot::IDENTITY,
-            id_flag: 0,
+            reference_is_b: false,
         };
         let mut out = [LocalPoint::default(); MAX_MANIFOLD_POINTS];
         assert_eq!(reference.contact(ZERO, &mut out), Some((Vector2::Y, 1)));

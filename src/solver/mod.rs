@@ -10,23 +10,36 @@
 //! 3. solves the contacts as soft constraints (a spring-damper of
 //!    `contact_hertz` / `contact_damping_ratio` pushing overlap out at no more than
 //!    `contact_push_speed`; speculative points, still apart, only stop the bodies
-//!    from closing the gap within the sub-step), in pair order, with both points
+//!    from closing the gap within the sub-step), in one sweep, with both points
 //!    of a two-point manifold solved together as a 2×2 block (an exact linear
-//!    complementarity solve, as in Box2D v2.4),
+//!    complementarity solve, as in Box2D v2.4, of the system whose Gauss-Seidel
+//!    step is Box2D v3's per-point soft update: each point its own spring),
 //! 4. integrates positions,
 //! 5. relaxes: one sweep without the position bias, so the push-out does not
-//!    leave energy behind; forward in even sub-steps, in reverse in odd ones, and
-//!    in the last sub-step a second sweep the other way (symmetric Gauss-Seidel).
+//!    leave energy behind; the last sub-step adds one more forward sweep.
 //!
-//! These choices were measured on `tests/quality.rs`, not picked for looks: with
-//! one-way sweeps a symmetric pyramid creeps sideways (16 mm in 10 s); solving the
-//! two points of a manifold one after the other lets a 20-box stack topple (the
-//! first point always takes more). Two relax sweeps in every sub-step (12 sweeps a
-//! step) were the previous design; one alternating sweep (8, Box2D's count) is as
-//! good everywhere except a 4-box column recovering from 25 % overlap, which ends
-//! steps at 3.3 m/s, above the 3 m/s push speed; the extra sweep in the last
-//! sub-step (9 sweeps) brings that to 2.8 m/s and the 20-box stack's drift from
-//! 1.7 mm to 0.07 mm.
+//! Both sweeps of a sub-step run in the same direction, in pair order or in
+//! reverse, and the direction changes every two sub-steps: forward, reverse,
+//! reverse, forward (then forward, reverse, reverse, forward with 8 sub-steps),
+//! so over a step every pair is solved first as often as last, in the biased
+//! sweeps as in the relax sweeps.
+//!
+//! These choices were measured on `tests/quality.rs` and `tests/scale.rs`, not
+//! picked for looks: with one-way sweeps a symmetric pyramid creeps sideways
+//! (16 mm in 10 s); solving the two points of a manifold one after the other lets
+//! a 20-box stack topple (the first point always takes more). Two relax sweeps in
+//! every sub-step (12 sweeps a step) were an earlier design; one sweep (8,
+//! Box2D's count) is as good everywhere except a 4-box column recovering from
+//! 25 % overlap, which ends steps at 3.6 m/s, above the 3 m/s push speed; the
+//! extra forward sweep in the last sub-step (9 sweeps) brings that to 2.98 m/s.
+//! The biased sweeps used to run forward in every sub-step (only the relax
+//! alternated): 7 forward sweeps a step against 2 in reverse, and Box2D v3's
+//! 100-row large_pyramid ended 88 mm off centre at the top (80 rows 53 mm, 90
+//! rows 69 mm); in this order it ends 37 mm off (22 mm, 29 mm). Alternating
+//! every sub-step (forward, reverse, forward, reverse) centres it as well
+//! (38 mm) but ends the overlapped column's steps at 3.03 m/s; a relax sweep
+//! against its sub-step's biased sweep undoes the push-out (the overlapped
+//! column never separates).
 //!
 //! After the last sub-step a restitution pass gives contacts that approached
 //! faster than `restitution_threshold` their bounce, e·v.
@@ -91,7 +104,7 @@ impl World<'_> {
             static_soft: Softness::new(hertz.sat_mul(scalar::TWO), zeta, h),
             push_speed: self.def.contact_push_speed,
         };
-        self.load_solver(inv_n);
+        self.load_solver(inv_n, &params);
         self.prepare_constraints(dt, h);
         // The built-in joints work on the solver's bodies; the game's constraints
         // see `Body`, so when there are any the solver's copy is written to the
@@ -99,6 +112,8 @@ impl World<'_> {
         let user = !self.constraints.is_empty();
         let (vmax, wmax) = (self.def.max_linear_speed, self.angular_limit(dt));
         for substep in 0..n {
+            // Forward, reverse, reverse, forward, forward, reverse, …
+            let reverse = (substep.saturating_add(1) / 2) % 2 == 1;
             let (bodies, _) = self.solver.split();
             for sb in bodies.iter_mut().filter(|sb| sb.forced) {
                 sb.v += sb.pending_v;
@@ -112,7 +127,7 @@ impl World<'_> {
                 self.joint_pass(|w| w.solve_user_constraints(h));
             }
             let (bodies, constraints) = self.solver.split();
-            contact::solve(bodies, constraints, &params, true, false, false);
+            contact::solve(bodies, constraints, &params, true, reverse, reverse);
             for sb in bodies.iter_mut().filter(|sb| sb.moves) {
                 // Component clamps are cheap and bound the displacement; the
                 // exact speed limit is applied once at the end of the step.
@@ -124,16 +139,14 @@ impl World<'_> {
                 sb.angle = sb.angle.sat_add(turn);
                 sb.q = sb.q.integrate(turn);
             }
-            // Relax: one sweep, forward in even sub-steps and in reverse in odd
-            // ones, so no pair is always solved first; the last sub-step adds a
-            // sweep the other way (symmetric Gauss-Seidel), which drains what the
-            // push-out left in the velocities the step ends with.
+            // Relax: one sweep in the sub-step's direction; the last sub-step
+            // adds a forward sweep, which drains what the push-out left in the
+            // velocities the step ends with.
             self.for_each_joint_in(true, |j, a, b| j.solve(a, b, h, false));
             let (bodies, constraints) = self.solver.split();
-            let odd = substep % 2 == 1;
-            contact::solve(bodies, constraints, &params, false, odd, odd);
+            contact::solve(bodies, constraints, &params, false, reverse, reverse);
             if substep + 1 == n {
-                contact::solve(bodies, constraints, &params, false, !odd, !odd);
+                contact::solve(bodies, constraints, &params, false, false, false);
             }
         }
         let threshold = self.def.restitution_threshold;
@@ -151,7 +164,7 @@ impl World<'_> {
 
     /// Copies the bodies into the solver's array and builds the contact
     /// constraints of the arbiters solved this step, in arbiter order.
-    fn load_solver(&mut self, inv_n: Scalar) {
+    fn load_solver(&mut self, inv_n: Scalar, params: &StepParams) {
         let World { bodies, contacts, solver, .. } = self;
         let sbodies: &mut [SolverBody] = &mut solver.bodies;
         for (i, b) in bodies.iter() {
@@ -170,7 +183,7 @@ impl World<'_> {
             };
             // The constraint buffer is as long as the arbiter buffer.
             let Some(slot) = solver.constraints.get_mut(count) else { break };
-            *slot = contact::prepare(k as u32, arb, arb.body_a.index(), arb.body_b.index(), a, b);
+            *slot = contact::prepare(k as u32, arb, (arb.body_a.index(), arb.body_b.index()), (a, b), params);
             count = count.saturating_add(1);
         }
         solver.count = count;
