@@ -40,6 +40,8 @@ pub struct SolverBody {
     pub(crate) forced: bool,
     /// Integrates its position (not static, in bounds).
     pub(crate) moves: bool,
+    /// Takes impulses (dynamic): contacts change its velocity.
+    pub(crate) dynamic: bool,
 }
 
 impl SolverBody {
@@ -54,6 +56,7 @@ impl SolverBody {
         pending_w: ZERO,
         forced: false,
         moves: false,
+        dynamic: false,
     };
 
     /// Loads a body's state; `inv_n` is 1 / sub-steps.
@@ -69,6 +72,7 @@ impl SolverBody {
             pending_w: b.pending_w.sat_mul(inv_n),
             forced: b.is_dynamic() && !b.out_of_bounds,
             moves: b.is_awake_mover(),
+            dynamic: b.body_type == BodyType::Dynamic,
         }
     }
 
@@ -300,14 +304,35 @@ pub(crate) fn arbiter_index(c: &ContactConstraint) -> usize {
     c.arbiter as usize
 }
 
-/// The two bodies of a constraint, mutably. `None` (skip) cannot happen for
-/// constraints built this step, but the solver must not panic if it did.
+/// Runs `f` on a constraint and copies of its two bodies, then writes back the
+/// velocity of each dynamic one (the only state a contact changes). A static or
+/// kinematic body takes no impulse (its inverse mass is 0, so the solver would
+/// store back the same bits), and not storing it keeps constraints that share
+/// only such a body independent: the processor overlaps them instead of
+/// waiting on a store that changes nothing. Skips (cannot happen for
+/// constraints built this step, but must not panic) a body out of range or a
+/// constraint of a body with itself.
 #[inline(always)]
-fn pair<'b>(
-    bodies: &'b mut [SolverBody],
-    c: &ContactConstraint,
-) -> Option<(&'b mut SolverBody, &'b mut SolverBody)> {
-    pair_at(bodies, c.a, c.b)
+fn with_pair(
+    bodies: &mut [SolverBody],
+    c: &mut ContactConstraint,
+    f: impl FnOnce(&mut ContactConstraint, &mut SolverBody, &mut SolverBody),
+) {
+    let (ia, ib) = (c.a as usize, c.b as usize);
+    let (Some(&a), Some(&b)) = (bodies.get(ia), bodies.get(ib)) else { return };
+    if ia == ib {
+        return;
+    }
+    let (mut a, mut b) = (a, b);
+    f(c, &mut a, &mut b);
+    for (i, sb) in [(ia, a), (ib, b)] {
+        if sb.dynamic {
+            if let Some(dst) = bodies.get_mut(i) {
+                dst.v = sb.v;
+                dst.w = sb.w;
+            }
+        }
+    }
 }
 
 /// Bodies `i` and `j`, mutably; `None` if they are the same or out of range.
@@ -333,22 +358,26 @@ pub(crate) fn pair_at(
 /// into one linear and one angular change per body.
 pub(crate) fn warm_start(bodies: &mut [SolverBody], constraints: &mut [ContactConstraint]) {
     for c in constraints.iter_mut() {
-        let Some((a, b)) = pair(bodies, c) else { continue };
-        let (mut sn, mut st, mut wa, mut wb) = (ZERO, ZERO, ZERO, ZERO);
-        let count = usize::from(c.count);
-        for cp in c.points.iter_mut().take(count) {
-            let (ln, lt) = (cp.normal_impulse, cp.tangent_impulse);
-            cp.total_normal_impulse = cp.total_normal_impulse.sat_add(ln);
-            sn = sn.sat_add(ln);
-            st = st.sat_add(lt);
-            wa = wa.sat_add(cp.irn[0].sat_mul(ln)).sat_add(cp.irt[0].sat_mul(lt));
-            wb = wb.sat_add(cp.irn[1].sat_mul(ln)).sat_add(cp.irt[1].sat_mul(lt));
-        }
-        a.v -= c.n_m[0] * sn + c.t_m[0] * st;
-        a.w = a.w.sat_sub(wa);
-        b.v += c.n_m[1] * sn + c.t_m[1] * st;
-        b.w = b.w.sat_add(wb);
+        with_pair(bodies, c, warm_start_one);
     }
+}
+
+/// [`warm_start`] on one constraint.
+fn warm_start_one(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverBody) {
+    let (mut sn, mut st, mut wa, mut wb) = (ZERO, ZERO, ZERO, ZERO);
+    let count = usize::from(c.count);
+    for cp in c.points.iter_mut().take(count) {
+        let (ln, lt) = (cp.normal_impulse, cp.tangent_impulse);
+        cp.total_normal_impulse = cp.total_normal_impulse.sat_add(ln);
+        sn = sn.sat_add(ln);
+        st = st.sat_add(lt);
+        wa = wa.sat_add(cp.irn[0].sat_mul(ln)).sat_add(cp.irt[0].sat_mul(lt));
+        wb = wb.sat_add(cp.irn[1].sat_mul(ln)).sat_add(cp.irt[1].sat_mul(lt));
+    }
+    a.v -= c.n_m[0] * sn + c.t_m[0] * st;
+    a.w = a.w.sat_sub(wa);
+    b.v += c.n_m[1] * sn + c.t_m[1] * st;
+    b.w = b.w.sat_add(wb);
 }
 
 /// One sweep over every constraint, in pair order or in `reverse`.
@@ -361,9 +390,7 @@ pub(crate) fn solve(
     reverse: bool,
 ) {
     let mut visit = |c: &mut ContactConstraint| {
-        if let Some((a, b)) = pair(bodies, c) {
-            solve_one(c, a, b, params, use_bias, reverse_points);
-        }
+        with_pair(bodies, c, |c, a, b| solve_one(c, a, b, params, use_bias, reverse_points));
     };
     if reverse {
         constraints.iter_mut().rev().for_each(&mut visit);
@@ -383,29 +410,32 @@ pub(crate) fn apply_restitution(
     constraints: &mut [ContactConstraint],
     threshold: Scalar,
 ) {
-    const RESTITUTION_ITERATIONS: u32 = 4;
     for c in constraints.iter_mut() {
-        if c.restitution == ZERO {
-            continue;
+        if c.restitution != ZERO {
+            with_pair(bodies, c, |c, a, b| restitute(c, a, b, threshold));
         }
-        let Some((a, b)) = pair(bodies, c) else { continue };
-        let (n, e, n_m) = (c.normal, c.restitution, c.n_m);
-        let count = usize::from(c.count);
-        for _ in 0..RESTITUTION_ITERATIONS {
-            for cp in c.points.iter_mut().take(count) {
-                if cp.relative_velocity > threshold.saturating_neg() || cp.max_normal_impulse == ZERO {
-                    continue;
-                }
-                let vn = relative_speed(a, b, n, cp.rn);
-                let target = vn.sat_add(e.sat_mul(cp.relative_velocity));
-                let impulse = cp.normal_mass.sat_mul(target).saturating_neg();
-                let new = cp.normal_impulse.sat_add(impulse).max(ZERO);
-                let applied = new.sat_sub(cp.normal_impulse);
-                cp.normal_impulse = new;
-                cp.max_normal_impulse = cp.max_normal_impulse.max(applied);
-                cp.total_normal_impulse = cp.total_normal_impulse.sat_add(applied);
-                apply_along(a, b, n_m, cp.irn, applied);
+    }
+}
+
+/// [`apply_restitution`] on one constraint.
+fn restitute(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverBody, threshold: Scalar) {
+    const RESTITUTION_ITERATIONS: u32 = 4;
+    let (n, e, n_m) = (c.normal, c.restitution, c.n_m);
+    let count = usize::from(c.count);
+    for _ in 0..RESTITUTION_ITERATIONS {
+        for cp in c.points.iter_mut().take(count) {
+            if cp.relative_velocity > threshold.saturating_neg() || cp.max_normal_impulse == ZERO {
+                continue;
             }
+            let vn = relative_speed(a, b, n, cp.rn);
+            let target = vn.sat_add(e.sat_mul(cp.relative_velocity));
+            let impulse = cp.normal_mass.sat_mul(target).saturating_neg();
+            let new = cp.normal_impulse.sat_add(impulse).max(ZERO);
+            let applied = new.sat_sub(cp.normal_impulse);
+            cp.normal_impulse = new;
+            cp.max_normal_impulse = cp.max_normal_impulse.max(applied);
+            cp.total_normal_impulse = cp.total_normal_impulse.sat_add(applied);
+            apply_along(a, b, n_m, cp.irn, applied);
         }
     }
 }
