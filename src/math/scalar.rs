@@ -245,12 +245,14 @@ mod tests {
     fn sat_add_and_sub_match_fixed_bit_for_bit() {
         let edges = [0, 1, -1, 2, -2, i64::MAX, i64::MIN, i64::MAX - 1, i64::MIN + 1, 1 << 62, -(1 << 62)];
         let mut x: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut vals: Vec<i64> = edges.to_vec();
-        for _ in 0..2_000 {
+        // A fixed array, so the test runs in the no-allocator build too.
+        let mut vals = [0i64; 11 + 2_000];
+        vals[..edges.len()].copy_from_slice(&edges);
+        for v in vals.iter_mut().skip(edges.len()) {
             x ^= x >> 12;
             x ^= x << 25;
             x ^= x >> 27;
-            vals.push(x.wrapping_mul(0x9e37_79b9_7f4a_7c15) as i64);
+            *v = x.wrapping_mul(0x9e37_79b9_7f4a_7c15) as i64;
         }
         for &a in &vals {
             for &b in vals.iter().take(200) {
