@@ -180,10 +180,17 @@ impl World<'_> {
         let (vmax, wmax) = (self.def.max_linear_speed, self.angular_limit(dt));
         let World { bodies, paths, contacts: c, handlers, post_step, .. } = self;
         let bodies: &Arena<'_, Body> = bodies;
+        let Contacts { pairs, arbiters, next, arbiter_count, .. } = c;
+        let live = arbiters.get(..(*arbiter_count).min(arbiters.len())).unwrap_or(&[]);
+        let pairs = pairs.get(..npairs.min(pairs.len())).unwrap_or(&[]);
+        // Each arbiter is built in its output slot (a 256-byte record copied once,
+        // not at every hand-over); a dropped one leaves `out` where it was, so
+        // the next overwrites it. `spare` stands in should the output be full,
+        // which `broad_phase`'s capacity check rules out.
+        let mut spare = Arbiter::EMPTY;
         let (mut i, mut j, mut out) = (0usize, 0usize, 0usize);
         loop {
-            let cand = c.pairs.get(i).copied().filter(|_| i < npairs);
-            let old = c.arbiters.get(j).copied().filter(|_| j < c.arbiter_count);
+            let (cand, old) = (pairs.get(i).copied(), live.get(j));
             let (key, candidate, previous) = match (cand, old) {
                 (None, None) => break,
                 (Some(k), None) => (k, true, None),
@@ -200,7 +207,13 @@ impl World<'_> {
             if previous.is_some() {
                 j = j.saturating_add(1);
             }
-            let Some(mut arb) = pair_arbiter(bodies, key, previous) else { continue };
+            let (arb, in_output) = match next.get_mut(out) {
+                Some(slot) => (slot, true),
+                None => (&mut spare, false),
+            };
+            if !pair_arbiter(bodies, key, previous, arb) {
+                continue;
+            }
             let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else { continue };
             let manifold = if candidate && should_collide(a, b) {
                 let margin = SPECULATIVE_DISTANCE
@@ -213,11 +226,7 @@ impl World<'_> {
             arb.friction = mix_friction(a.friction, b.friction);
             arb.restitution = mix_restitution(a.restitution, b.restitution);
             let mut ctx = CallbackContext { bodies, post_step: &mut *post_step };
-            if !lifecycle(&mut arb, &manifold, handlers, &mut ctx, persistence) {
-                continue;
-            }
-            if let Some(slot) = c.next.get_mut(out) {
-                *slot = arb;
+            if lifecycle(arb, &manifold, handlers, &mut ctx, persistence) && in_output {
                 out = out.saturating_add(1);
             }
         }
@@ -327,28 +336,35 @@ fn set_manifold(arb: &mut Arbiter, m: &Manifold) {
     arb.normal = m.normal;
 }
 
-/// The arbiter for a key: the previous one (if its bodies are still the same
-/// live bodies) or a new one with the bodies in canonical order. `None` when a
-/// body no longer exists.
-fn pair_arbiter(bodies: &Arena<'_, Body>, key: (u32, u32), previous: Option<Arbiter>) -> Option<Arbiter> {
-    let (ha, hb) = (bodies.handle_at(key.0)?, bodies.handle_at(key.1)?);
+/// Writes the arbiter for a key into `out`: the previous one (if its bodies
+/// are still the same live bodies) or a new one with the bodies in canonical
+/// order. False, leaving `out` as it was, when a body no longer exists.
+fn pair_arbiter(
+    bodies: &Arena<'_, Body>,
+    key: (u32, u32),
+    previous: Option<&Arbiter>,
+    out: &mut Arbiter,
+) -> bool {
+    let (Some(ha), Some(hb)) = (bodies.handle_at(key.0), bodies.handle_at(key.1)) else { return false };
     if let Some(p) = previous {
         if bodies.contains(p.body_a) && bodies.contains(p.body_b) {
-            return Some(p);
+            *out = *p;
+            return true;
         }
     }
-    let (a, b) = (bodies.get(ha)?, bodies.get(hb)?);
+    let (Some(a), Some(b)) = (bodies.get(ha), bodies.get(hb)) else { return false };
     // The manual's order: the body with the smaller shape kind first (circles
     // before polygons); the key order breaks ties.
     let (first, second, fa, fb) =
         if b.shape.kind_rank() < a.shape.kind_rank() { (hb, ha, b, a) } else { (ha, hb, a, b) };
-    Some(Arbiter {
+    *out = Arbiter {
         body_a: first,
         body_b: second,
         level_a: fa.collision_level,
         level_b: fb.collision_level,
         ..Arbiter::EMPTY
-    })
+    };
+    true
 }
 
 /// How far any point of the body can move in `dt` at its current velocity, as an

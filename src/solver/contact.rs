@@ -231,19 +231,20 @@ pub(crate) fn inverse_mass(b: &Body) -> (Scalar, Scalar) {
     }
 }
 
-/// Builds the constraint of arbiter `index` (which is solved this step) between
-/// bodies `a` and `b` in slots `ia`, `ib`.
+/// Builds, in `c`, the constraint of arbiter `index` (which is solved this
+/// step) between bodies `a` and `b` in slots `ia`, `ib`.
 pub(crate) fn prepare(
     index: u32,
     arb: &Arbiter,
     (ia, ib): (u32, u32),
     (a, b): (&Body, &Body),
     params: &StepParams,
-) -> ContactConstraint {
+    c: &mut ContactConstraint,
+) {
     let ((ma, iia), (mb, iib)) = (inverse_mass(a), inverse_mass(b));
     let n = arb.normal;
     let t = n.right_perp();
-    let mut c = ContactConstraint {
+    *c = ContactConstraint {
         arbiter: index,
         a: ia,
         b: ib,
@@ -272,7 +273,7 @@ pub(crate) fn prepare(
     }
     let [p1, p2] = &c.points;
     c.k12 = ma.sat_add(mb).sat_add(p1.irn[0].sat_mul(p2.rn[0])).sat_add(p1.irn[1].sat_mul(p2.rn[1]));
-    c.block = block_inverse(&c);
+    c.block = block_inverse(c);
     c.static_pair = ma == ZERO || mb == ZERO;
     if c.block.is_some() {
         let ms = if c.static_pair { params.static_soft.mass_scale } else { params.soft.mass_scale };
@@ -285,7 +286,6 @@ pub(crate) fn prepare(
     }
     c.n_m = [n * ma, n * mb];
     c.t_m = [t * ma, t * mb];
-    c
 }
 
 /// Copies what outlives the step back into the arbiter: the impulses that warm-start

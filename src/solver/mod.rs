@@ -183,7 +183,7 @@ impl World<'_> {
             };
             // The constraint buffer is as long as the arbiter buffer.
             let Some(slot) = solver.constraints.get_mut(count) else { break };
-            *slot = contact::prepare(k as u32, arb, (arb.body_a.index(), arb.body_b.index()), (a, b), params);
+            contact::prepare(k as u32, arb, (arb.body_a.index(), arb.body_b.index()), (a, b), params, slot);
             count = count.saturating_add(1);
         }
         solver.count = count;
