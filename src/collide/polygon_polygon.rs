@@ -164,8 +164,18 @@ fn max_separation(poly: &PolygonPath, other: &[Vector2]) -> Option<(usize, Scala
     }
     let mut best: Option<(usize, Scalar)> = None;
     for (i, (v, n)) in poly.vertices().iter().zip(poly.normals()).enumerate() {
-        let deepest = other.iter().map(|w| n.dot(*w - *v)).min().unwrap_or(Scalar::MAX);
-        if best.is_none_or(|(_, b)| deepest > b) {
+        // A face replaces the best only when its deepest vertex is strictly
+        // shallower, so its scan stops at the first vertex at or below the best
+        // (the result is the same; most faces of resting boxes stop at once).
+        let bound = best.map(|(_, b)| b);
+        let mut deepest = Scalar::MAX;
+        for w in other {
+            deepest = deepest.min(n.dot(*w - *v));
+            if bound.is_some_and(|b| deepest <= b) {
+                break;
+            }
+        }
+        if bound.is_none_or(|b| deepest > b) {
             best = Some((i, deepest));
         }
     }
