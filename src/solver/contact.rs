@@ -356,9 +356,12 @@ pub(crate) fn pair_at(
 
 /// Applies the previous sub-step's impulses again: all points' impulses summed
 /// into one linear and one angular change per body.
-pub(crate) fn warm_start(bodies: &mut [SolverBody], constraints: &mut [ContactConstraint]) {
-    for c in constraints.iter_mut() {
-        with_pair(bodies, c, warm_start_one);
+pub(crate) fn warm_start(bodies: &mut [SolverBody], constraints: &mut [ContactConstraint], reverse: bool) {
+    let visit = |c: &mut ContactConstraint| with_pair(bodies, c, warm_start_one);
+    if reverse {
+        constraints.iter_mut().rev().for_each(visit);
+    } else {
+        constraints.iter_mut().for_each(visit);
     }
 }
 
