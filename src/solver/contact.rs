@@ -16,7 +16,7 @@
 //! nothing; their contents are derived each step and are not part of a snapshot.
 
 use crate::arbiter::Arbiter;
-use crate::body::{Body, BodyType};
+use crate::body::Body;
 use crate::math::scalar::ScalarExt as _;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rot, Vector2};
@@ -72,7 +72,7 @@ impl SolverBody {
             pending_w: b.pending_w.sat_mul(inv_n),
             forced: b.is_dynamic() && !b.out_of_bounds,
             moves: b.is_awake_mover(),
-            dynamic: b.body_type == BodyType::Dynamic,
+            dynamic: b.is_dynamic(),
         }
     }
 
@@ -224,7 +224,7 @@ pub(crate) struct StepParams {
 
 /// Inverse mass and inertia a body contributes to a contact (0 unless dynamic).
 pub(crate) fn inverse_mass(b: &Body) -> (Scalar, Scalar) {
-    if b.body_type == BodyType::Dynamic {
+    if b.is_dynamic() {
         (b.mass.inv_mass, b.mass.inv_inertia)
     } else {
         (ZERO, ZERO)
