@@ -473,3 +473,20 @@ fn sort_and_sweep_gives_the_same_world_as_brute_force() {
     }
     assert!(brute.arbiters().count() > 300);
 }
+
+#[test]
+fn a_resting_boxs_total_normal_impulse_over_a_step_is_its_weight_times_the_step() {
+    // At rest the floor carries the weight: over a step of dt it delivers
+    // m·g·dt, however the solver splits it into sub-steps and sweeps.
+    let (mut w, floor) = floor_world(0);
+    let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("path");
+    let b = w.add_body(BodyDef::polygon(unit).position(v(0.0, 0.5))).expect("box");
+    for _ in 0..120 {
+        w.step(s(DT)).expect("step");
+    }
+    let m = w.body(b).expect("box").mass().to_num::<f64>();
+    let arb = w.arbiter(b, floor).expect("touching");
+    let total = arb.total_normal_impulse().to_num::<f64>();
+    let expected = m * 10.0 * DT;
+    assert!((total - expected).abs() <= 0.01 * expected, "total {total} N·s, weight × dt {expected} N·s");
+}

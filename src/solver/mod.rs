@@ -140,7 +140,7 @@ impl World<'_> {
             }
             self.for_each_joint(|j, a, b| j.warm_start(a, b));
             let (bodies, constraints) = self.solver.split();
-            contact::warm_start(bodies, constraints, warm_start_reverse(substep));
+            contact::warm_start(bodies, constraints, warm_start_reverse(substep), substep > 0);
             self.for_each_joint(|j, a, b| j.solve(a, b, h, true));
             if user {
                 self.joint_pass(|w| w.solve_user_constraints(h));
@@ -169,9 +169,10 @@ impl World<'_> {
             }
         }
         let threshold = self.def.restitution_threshold;
-        let (bodies, constraints) = self.solver.split();
-        contact::apply_restitution(bodies, constraints, threshold);
-        self.unload_solver();
+        let World { contacts, solver, .. } = self;
+        let (bodies, constraints) = solver.split();
+        contact::restitute_and_store(bodies, constraints, contacts.live_mut(), threshold);
+        self.store_solver_bodies();
         for (_, j) in self.joints.iter_mut() {
             j.broken = j.finish_step();
         }
@@ -206,18 +207,6 @@ impl World<'_> {
             count = count.saturating_add(1);
         }
         solver.count = count;
-    }
-
-    /// Writes the solver's bodies and impulses back.
-    fn unload_solver(&mut self) {
-        self.store_solver_bodies();
-        let World { contacts, solver, .. } = self;
-        let arbiters = contacts.live_mut();
-        for c in solver.constraints.get(..solver.count).unwrap_or(&[]) {
-            if let Some(arb) = arbiters.get_mut(contact::arbiter_index(c)) {
-                contact::store(c, arb);
-            }
-        }
     }
 
     fn store_solver_bodies(&mut self) {
