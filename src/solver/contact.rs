@@ -172,7 +172,7 @@ impl PointConstraint {
 /// fit in cache (Box2D v3's 100-row pyramid has 15,000 of them) and every pass
 /// streams them from memory: seven cache lines, aligned, and what warm starting
 /// reads (the bodies, the linear velocity change per impulse, each point's
-/// [`PointImpulse`]) in the first three.
+/// impulses and inertia-scaled arms) in the first three.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(C, align(64))]
 pub struct ContactConstraint {
