@@ -131,13 +131,9 @@ pub fn div(a: Scalar, b: Scalar) -> Scalar {
         (ua << 32) / ub
     } else if ua == 1 << 32 {
         // ⌊2⁶⁴ / ub⌋ from ⌊(2⁶⁴ − 1) / ub⌋: one more exactly when ub divides 2⁶⁴.
-        // (ub = 1 overflows either way and saturates below.)
+        // (ub = 1 overflows either way: u64::MAX, which saturates below.)
         let (q, r) = (u64::MAX / ub, u64::MAX % ub);
-        if ub == 1 {
-            u64::MAX
-        } else {
-            q + u64::from(r == ub - 1)
-        }
+        q.saturating_add(u64::from(r == ub - 1))
     } else {
         return a.saturating_div(b);
     };

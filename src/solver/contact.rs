@@ -442,15 +442,15 @@ fn visit_all(
 fn warm_start_one(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverBody, total: bool) {
     let (mut sn, mut st, mut wa, mut wb) = (ZERO, ZERO, ZERO, ZERO);
     let count = usize::from(c.count);
-    for cp in c.impulses.iter_mut().take(count) {
-        let (ln, lt) = (cp.normal_impulse, cp.tangent_impulse);
+    for ci in c.impulses.iter_mut().take(count) {
+        let (ln, lt) = (ci.normal_impulse, ci.tangent_impulse);
         if total {
-            cp.total_normal_impulse = cp.total_normal_impulse.sat_add(ln);
+            ci.total_normal_impulse = ci.total_normal_impulse.sat_add(ln);
         }
         sn = sn.sat_add(ln);
         st = st.sat_add(lt);
-        wa = wa.sat_add(cp.irn[0].sat_mul(ln)).sat_add(cp.irt[0].sat_mul(lt));
-        wb = wb.sat_add(cp.irn[1].sat_mul(ln)).sat_add(cp.irt[1].sat_mul(lt));
+        wa = wa.sat_add(ci.irn[0].sat_mul(ln)).sat_add(ci.irt[0].sat_mul(lt));
+        wb = wb.sat_add(ci.irn[1].sat_mul(ln)).sat_add(ci.irt[1].sat_mul(lt));
     }
     a.v -= c.n_m[0] * sn + c.t_m[0] * st;
     a.w = a.w.sat_sub(wa);
@@ -487,7 +487,7 @@ pub(crate) fn restitute_and_store(
     arbiters: &mut [Arbiter],
     threshold: Scalar,
 ) {
-    visit_all(constraints, false, false, |c| {
+    visit_all(constraints, false, true, |c| {
         let Some(arb) = arbiters.get_mut(arbiter_index(c)) else { return };
         let e = arb.restitution;
         if e != ZERO {
@@ -540,9 +540,10 @@ fn mass_matrix(
     ma.sat_add(mb).sat_add(ia.sat_mul(rda.sat_mul(rda))).sat_add(ib.sat_mul(rdb.sat_mul(rdb)))
 }
 
-/// The inverse of the 2×2 normal mass matrix K of a two-point manifold,
-/// `[a, b, d]` for the symmetric `[[a, b], [b, d]]`, when K is well conditioned (k11² < 1000·det K, Box2D's
-/// test); otherwise `None` and the points are solved one at a time.
+/// The inverse of the 2×2 normal mass matrix K of a two-point manifold, `[a, b, d]`
+/// for the symmetric `[[a, b], [b, d]]`, when K is well conditioned
+/// (k11² < 1000·det K, Box2D's test); otherwise `None` and the points are solved
+/// one at a time.
 fn block_inverse(c: &ContactConstraint) -> Option<[Scalar; 3]> {
     if c.count != 2 {
         return None;
@@ -558,8 +559,8 @@ fn block_inverse(c: &ContactConstraint) -> Option<[Scalar; 3]> {
 }
 
 /// The inverse of the symmetric 2×2 matrix with diagonal entries 1/`u1`, 1/`u2`
-/// and off-diagonal entry `k12`, `[a, b, d]` as in [`block_inverse`], or `None` when it is
-/// singular. Formed from the inverses of the diagonal entries so that no product
+/// and off-diagonal entry `k12`, `[a, b, d]` as in [`block_inverse`], or `None`
+/// when it is singular. Formed from the inverses of the diagonal entries so that no product
 /// of two diagonal entries (which can be large for light bodies) is needed:
 /// K⁻¹ = 1/(1 − ρ) · [u1, −k12·u1·u2; −k12·u1·u2, u2] with ρ = k12²·u1·u2.
 fn inverse_from_diagonal_inverses(u1: Scalar, u2: Scalar, k12: Scalar) -> Option<[Scalar; 3]> {
@@ -626,10 +627,9 @@ fn solve_block(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverBody
     let q1 = v1.sat_add(bias1).sat_sub(k11.sat_mul(l1)).sat_sub(k12.sat_mul(l2));
     let q2 = v2.sat_add(bias2).sat_sub(k12.sat_mul(l1)).sat_sub(k22.sat_mul(l2));
     let [i11, i12, i22] = inv;
-    let i21 = i12;
     // Case 1: both push.
     let x1 = i11.sat_mul(q1).sat_add(i12.sat_mul(q2)).saturating_neg();
-    let x2 = i21.sat_mul(q1).sat_add(i22.sat_mul(q2)).saturating_neg();
+    let x2 = i12.sat_mul(q1).sat_add(i22.sat_mul(q2)).saturating_neg();
     let x = if x1 >= ZERO && x2 >= ZERO {
         Some((x1, x2))
     } else {
