@@ -102,12 +102,13 @@ impl ScalarExt for Scalar {
 /// Written that way (or as the `i128` shift) the compiler recognises a funnel
 /// shift and, on x86-64 with the default tuning, emits `SHLD`: one micro-op on
 /// Intel but six on AMD's Zen 1 (this project's benchmark machine), where it
-/// made up half the micro-ops of a product. Taking the high half of `lo`, the low
-/// half of `hi` and swapping the halves with a rotate is not matched, and costs
-/// three one-cycle operations everywhere: pyramid_20 1.47 → 1.32 ms/step,
+/// made up half the micro-ops of a product. Putting the low half of `hi` in place
+/// of that of `lo` (two XORs, no mask constant to keep in a register) and swapping
+/// the halves with a rotate is not matched, and costs three one-cycle operations
+/// everywhere: pyramid_20 1.47 → 1.32 ms/step,
 /// large_pyramid 42.1 → 38.9 ms/step on this machine (medians of alternating
 /// runs). Other targets keep the plain shift, which AArch64 does in one `EXTR`.
-/// The same bits either way (see `sat_mul_matches_fixed_bit_for_bit`).
+/// The same bits either way (see `both_middle_word_forms_take_bits_32_to_96`).
 #[inline(always)]
 fn middle_word(lo: u64, hi: i64) -> i64 {
     if cfg!(target_arch = "x86_64") {
@@ -119,7 +120,8 @@ fn middle_word(lo: u64, hi: i64) -> i64 {
 
 #[inline(always)]
 fn middle_word_by_rotate(lo: u64, hi: i64) -> i64 {
-    ((lo & 0xFFFF_FFFF_0000_0000) | u64::from(hi as u32)).rotate_right(32) as i64
+    // The low half of `lo` becomes that of `hi` (x ^ x ^ h), then the halves swap.
+    (lo ^ u64::from(lo as u32 ^ hi as u32)).rotate_right(32) as i64
 }
 
 #[inline(always)]
