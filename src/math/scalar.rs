@@ -105,9 +105,9 @@ impl ScalarExt for Scalar {
 /// made up half the micro-ops of a product. Putting the low half of `hi` in place
 /// of that of `lo` (two XORs, no mask constant to keep in a register) and swapping
 /// the halves with a rotate is not matched, and costs three one-cycle operations
-/// everywhere: pyramid_20 1.47 → 1.32 ms/step,
-/// large_pyramid 42.1 → 38.9 ms/step on this machine (medians of alternating
-/// runs). Other targets keep the plain shift, which AArch64 does in one `EXTR`.
+/// everywhere: pyramid_20 1.47 → 1.32 ms/step, large_pyramid 42.1 → 38.9 ms/step
+/// on this machine (medians of alternating runs). Other targets keep the plain
+/// shift, which AArch64 does in one `EXTR`.
 /// The same bits either way (see `both_middle_word_forms_take_bits_32_to_96`).
 #[inline(always)]
 fn middle_word(lo: u64, hi: i64) -> i64 {
