@@ -516,9 +516,7 @@ fn restitute(
             let target = vn.sat_add(e.sat_mul(cp.relative_velocity));
             let impulse = cp.normal_mass.sat_mul(target).saturating_neg();
             let new = ci.normal_impulse.sat_add(impulse).max(ZERO);
-            let applied = new.sat_sub(ci.normal_impulse);
-            ci.normal_impulse = new;
-            cp.max_normal_impulse = cp.max_normal_impulse.max(applied);
+            let applied = set_normal(cp, ci, new);
             apply_along(a, b, n_m, ci.irn, applied);
         }
     }
@@ -672,12 +670,19 @@ impl PointConstraint {
     }
 }
 
-/// Sets a point's accumulated normal impulse to `new` and keeps the step's
-/// largest change; returns the change, which the caller applies. The one place
-/// a sweep changes a normal impulse.
+/// A sweep's update of a point's normal impulse: notes the approach speed `vn`
+/// as the restitution reference ([`note_approach`]), then [`set_normal`].
 #[inline(always)]
 fn accumulate_normal(cp: &mut PointConstraint, ci: &mut PointImpulse, vn: Scalar, new: Scalar) -> Scalar {
     note_approach(cp, vn, new);
+    set_normal(cp, ci, new)
+}
+
+/// Sets a point's accumulated normal impulse to `new` and keeps the step's
+/// largest change; returns the change, which the caller applies. The one place
+/// a sweep or the restitution pass changes a normal impulse.
+#[inline(always)]
+fn set_normal(cp: &mut PointConstraint, ci: &mut PointImpulse, new: Scalar) -> Scalar {
     let applied = new.sat_sub(ci.normal_impulse);
     ci.normal_impulse = new;
     cp.max_normal_impulse = cp.max_normal_impulse.max(applied);
