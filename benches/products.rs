@@ -1,6 +1,6 @@
 //! The cost of one Q32.32 product on this machine: the unit the engine's speed is
 //! made of (a pyramid_20 step takes about 478,000 of them; see the README's
-//! "Performance"). Each product here is `sat_mul` followed by `sat_add` over
+//! "Performance"). Each product here is a saturating `*` followed by a saturating `+` over
 //! arrays of independent values, so the processor overlaps as many as it can:
 //! a throughput, the best case for the engine's code. Beside it, for scale: the
 //! same in Q16.16 `i32` lanes (what a narrower solver format would cost), with
@@ -11,7 +11,6 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use arphysics::math::scalar::ScalarExt as _;
 use arphysics::Scalar;
 
 const N: usize = 1024;
@@ -21,7 +20,7 @@ const SAMPLES: usize = 7;
 fn q32(a: &[Scalar; N], b: &[Scalar; N], out: &mut [Scalar; N]) {
     for _ in 0..REPS {
         for ((o, x), y) in out.iter_mut().zip(a).zip(b) {
-            *o = o.sat_add(x.sat_mul(*y));
+            *o += *x * *y;
         }
         black_box(&mut *out);
     }
@@ -88,7 +87,7 @@ fn main() {
     let n = median_ns(|| q16(&a16, &b16, &mut [0; N]));
     let u = median_ns(|| q16_unchecked(&a16, &b16, &mut [0; N]));
     let f = median_ns(|| f32s(&af, &bf, &mut [0.0; N]));
-    println!("Q32.32 sat_mul + sat_add: {q:.3} ns per product (median of {SAMPLES})");
+    println!("Q32.32 product + sum: {q:.3} ns per product (median of {SAMPLES})");
     println!("Q16.16 in i32 lanes, saturating: {n:.3} ns per product; Q32.32 takes {:.1}x", q / n);
     println!("Q16.16 in i32 lanes, unchecked: {u:.3} ns per product; Q32.32 takes {:.1}x", q / u);
     println!("f32 multiply-add (vectorised): {f:.3} ns per product; Q32.32 takes {:.1}x", q / f);

@@ -73,7 +73,7 @@ impl UniformGrid {
     /// The column or row holding coordinate `v` (integer arithmetic on the raw
     /// bits, clamped to the grid: boxes outside it land in the border cells).
     fn cell(v: Scalar, origin: Scalar, count: usize) -> u16 {
-        let d = v.saturating_sub(origin).to_bits();
+        let d = (v - origin).to_bits();
         let c = if d < 0 { 0 } else { (d >> (32 + LOG2_CELL)).min(count as i64 - 1) };
         c as u16
     }

@@ -24,7 +24,6 @@
 //! [`WorldDef::arbiter_persistence`]: crate::WorldDef::arbiter_persistence
 
 use crate::body::BodyHandle;
-use crate::math::scalar::ScalarExt as _;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::Vector2;
 
@@ -229,14 +228,14 @@ impl Arbiter {
 
     /// Changes the restitution for this pair (clamped to [0, 1]).
     pub fn set_restitution(&mut self, e: Scalar) {
-        self.restitution = scalar::clamp(e, ZERO, scalar::ONE);
+        self.restitution = e.clamp(ZERO, scalar::ONE);
     }
 
     /// Total normal impulse over the last step, summed over the contact points
     /// (N·s): what a game uses to compute damage.
     #[must_use]
     pub fn total_normal_impulse(&self) -> Scalar {
-        self.contact_points().iter().fold(ZERO, |acc, p| acc.saturating_add(p.total_normal_impulse))
+        self.contact_points().iter().fold(ZERO, |acc, p| acc + p.total_normal_impulse)
     }
 
     /// Steps since the bodies stopped touching (0 while touching).
@@ -263,7 +262,7 @@ pub fn mix_friction(a: Scalar, b: Scalar) -> Scalar {
     if a == b {
         return a.max(ZERO);
     }
-    scalar::sqrt(a.sat_mul(b))
+    (a * b).sqrt()
 }
 
 /// The restitution of a pair: the larger of the two, so a bouncy ball bounces on

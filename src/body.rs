@@ -10,7 +10,6 @@
 
 use crate::arena::Handle;
 use crate::geometry::{MassData, PolygonPath};
-use crate::math::scalar::ScalarExt as _;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rect, Rot, Transform, Vector2};
 
@@ -508,8 +507,7 @@ impl Body {
     /// Applies an angular impulse (N·m·s): Δω = L / I. Dynamic bodies only.
     pub fn apply_angular_impulse(&mut self, impulse: Scalar) {
         if self.is_dynamic() && !self.out_of_bounds {
-            self.angular_velocity =
-                self.angular_velocity.saturating_add(impulse.sat_mul(self.mass.inv_inertia));
+            self.angular_velocity += impulse * self.mass.inv_inertia;
         }
     }
 

@@ -8,7 +8,6 @@
 //! the arbiters is a pair whose boxes no longer overlap. No hashing, no search, and
 //! an order that depends only on body slots.
 
-use crate::math::scalar::ScalarExt as _;
 use managed::{Managed, ManagedSlice};
 
 use crate::arbiter::{mix_friction, mix_restitution, Arbiter, ArbiterState};
@@ -116,7 +115,7 @@ impl World<'_> {
             let (Some(p), Some(pb)) = (c.proxies.get_mut(n), c.proxy_bodies.get_mut(n)) else {
                 return Err(Error::CapacityFull { what: "broad-phase proxy" });
             };
-            let margin = SPECULATIVE_DISTANCE.saturating_add(sweep(b, dt, vmax, wmax));
+            let margin = SPECULATIVE_DISTANCE + sweep(b, dt, vmax, wmax);
             *p = Proxy { aabb: b.aabb.expand(margin), is_static: b.body_type == BodyType::Static };
             *pb = h.index();
             n = n.saturating_add(1);
@@ -216,9 +215,7 @@ impl World<'_> {
             }
             let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else { continue };
             let manifold = if candidate && should_collide(a, b) {
-                let margin = SPECULATIVE_DISTANCE
-                    .saturating_add(sweep(a, dt, vmax, wmax))
-                    .saturating_add(sweep(b, dt, vmax, wmax));
+                let margin = (SPECULATIVE_DISTANCE + sweep(a, dt, vmax, wmax)) + sweep(b, dt, vmax, wmax);
                 collide_bodies(a, b, paths, margin)
             } else {
                 Manifold::EMPTY
@@ -379,11 +376,7 @@ fn sweep(b: &Body, dt: Scalar, vmax: Scalar, wmax: Scalar) -> Scalar {
         return Scalar::ZERO;
     }
     let v = b.linear_velocity;
-    v.x.saturating_abs()
-        .min(vmax)
-        .saturating_add(v.y.saturating_abs().min(vmax))
-        .saturating_add(b.angular_velocity.saturating_abs().min(wmax).sat_mul(b.radius))
-        .sat_mul(dt)
+    ((v.x.abs().min(vmax) + v.y.abs().min(vmax)) + (b.angular_velocity.abs().min(wmax) * b.radius)) * dt
 }
 
 /// The contact manifold of two bodies in canonical order (normal from A to B),

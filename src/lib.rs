@@ -66,10 +66,10 @@
 //!    inputs give equal bytes of state on every target, in debug and release, at any
 //!    capacity; [`World::state_hash`] proves it (a golden hash is tested).
 //! 2. **No panic on any input.** Every fallible operation returns [`Error`]; a call
-//!    that returns an error has changed nothing. Arithmetic never uses a raw `+ - *
-//!    /` on `Scalar`: the value types saturate, the engine spells out `saturating_*`,
-//!    and ranges are kept far from saturation by validated inputs (see the limits
-//!    below).
+//!    that returns an error has changed nothing. [`Scalar`]'s operators saturate
+//!    (`a * b + c` is the same in debug and release, for the engine and for game
+//!    code alike; division by zero saturates too), and ranges are kept far from
+//!    saturation by validated inputs (see the limits below).
 //! 3. **No allocation in a step** (a test counts), and none required at all.
 //! 4. **Iteration order comes from simulation state alone**: bodies in slot order,
 //!    pairs in (lower slot, higher slot) order, hooks in registration order.

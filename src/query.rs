@@ -11,7 +11,7 @@ use crate::collide::{collide_circles, collide_polygon_circle, collide_polygons, 
 use crate::error::Error;
 use crate::geometry::ray::{polygon_contains, ray_circle, ray_polygon};
 use crate::geometry::PolygonPath;
-use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
+use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rect, Transform, Vector2};
 use crate::world::World;
 
@@ -84,7 +84,7 @@ impl<'a> World<'a> {
                 return None;
             }
             let (t, normal) = self.ray_body(b, from, dir, length)?;
-            Some(RayHit { body: h, point: from + dir * t, normal, fraction: scalar::div(t, length) })
+            Some(RayHit { body: h, point: from + dir * t, normal, fraction: t.div_or_zero(length) })
         }))
     }
 
@@ -144,7 +144,7 @@ impl<'a> World<'a> {
                 && match b.shape {
                     Shape::Circle { radius } => {
                         let d = point - b.position;
-                        d.length_squared() <= radius.sat_mul(radius)
+                        d.length_squared() <= radius * radius
                     }
                     Shape::Polygon(h) => {
                         self.paths.get(h).is_some_and(|p| polygon_contains(p, b.transform(), point))

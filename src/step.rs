@@ -26,8 +26,7 @@
 //! history alone.
 
 use crate::error::Error;
-use crate::math::scalar::ScalarExt as _;
-use crate::math::scalar::{self, Scalar, ZERO};
+use crate::math::scalar::{Scalar, ZERO};
 use crate::math::Vector2;
 use crate::world::{compute_aabb, StepReport, World};
 use crate::MAX_TIME_STEP;
@@ -76,7 +75,7 @@ impl World<'_> {
         for (_, b) in self.bodies.iter_mut() {
             let (v0, w0) = (b.pending_v, b.pending_w);
             b.pending_v = b.linear_velocity - v0;
-            b.pending_w = b.angular_velocity.saturating_sub(w0);
+            b.pending_w = b.angular_velocity - w0;
             b.linear_velocity = v0;
             b.angular_velocity = w0;
         }
@@ -95,11 +94,10 @@ impl World<'_> {
             }
             // Components are clamped first so the length cannot saturate.
             let v = b.linear_velocity;
-            let v = Vector2::new(scalar::clamp(v.x, -vmax, vmax), scalar::clamp(v.y, -vmax, vmax));
+            let v = Vector2::new(v.x.clamp(-vmax, vmax), v.y.clamp(-vmax, vmax));
             // |v|² fits: each component is at most MAX_LINEAR_SPEED_LIMIT (2048).
-            b.linear_velocity =
-                if v.length_squared() > vmax.sat_mul(vmax) { v.normalize() * vmax } else { v };
-            b.angular_velocity = scalar::clamp(b.angular_velocity, -wmax, wmax);
+            b.linear_velocity = if v.length_squared() > vmax * vmax { v.normalize() * vmax } else { v };
+            b.angular_velocity = b.angular_velocity.clamp(-wmax, wmax);
             if !bounds.contains(b.position) {
                 b.out_of_bounds = true;
                 b.linear_velocity = Vector2::ZERO;

@@ -32,7 +32,7 @@ use crate::math::{Rect, Rot, Vector2};
 ///
 /// Keeping positions within ±2^20 leaves 2^11 of headroom in Q32.32 for a body to
 /// move past the bounds in one step before it is frozen, so positions never overflow.
-pub const MAX_COORDINATE: Scalar = Scalar::const_from_int(1 << 20);
+pub const MAX_COORDINATE: Scalar = Scalar::from_int(1 << 20);
 
 /// Largest bounding radius of a body about its centre of mass, in metres: the
 /// geometry limits ([`MAX_CIRCLE_RADIUS`](crate::geometry::circle::MAX_CIRCLE_RADIUS),
@@ -44,15 +44,15 @@ pub const MAX_BODY_RADIUS: Scalar = crate::geometry::circle::MAX_CIRCLE_RADIUS;
 ///
 /// With the longest time step ([`MAX_TIME_STEP`](crate::MAX_TIME_STEP)) a body
 /// moves at most 512 m per step, and squared speeds (≤ 8.4e6) stay exact.
-pub const MAX_LINEAR_SPEED_LIMIT: Scalar = Scalar::const_from_int(2048);
+pub const MAX_LINEAR_SPEED_LIMIT: Scalar = Scalar::from_int(2048);
 
 /// Highest angular speed limit a world may be configured with, in rad/s. With
 /// inertia ≤ [`MAX_INERTIA`](crate::geometry::mass::MAX_INERTIA) (1e6 kg·m²) the
 /// angular momentum stays ≤ 2.6e8, 8× inside Q32.32's range.
-pub const MAX_ANGULAR_SPEED_LIMIT: Scalar = Scalar::const_from_int(256);
+pub const MAX_ANGULAR_SPEED_LIMIT: Scalar = Scalar::from_int(256);
 
 /// Largest friction coefficient accepted.
-pub const MAX_FRICTION: Scalar = Scalar::const_from_int(100);
+pub const MAX_FRICTION: Scalar = Scalar::from_int(100);
 
 /// Speculative contact distance, in metres (Box2D v3's 4 × linear slop): shapes
 /// closer than this get contact points before they touch, so the solver can stop
@@ -104,20 +104,20 @@ impl WorldDef {
     pub fn with_bounds(bounds: Rect) -> Self {
         Self {
             bounds,
-            max_linear_speed: Scalar::const_from_int(400),
-            max_angular_speed: Scalar::const_from_int(200),
+            max_linear_speed: Scalar::from_int(400),
+            max_angular_speed: Scalar::from_int(200),
             substeps: 4,
-            contact_hertz: Scalar::const_from_int(30),
-            contact_damping_ratio: Scalar::const_from_int(10),
-            contact_push_speed: Scalar::const_from_int(3),
-            restitution_threshold: Scalar::const_from_int(1),
+            contact_hertz: Scalar::from_int(30),
+            contact_damping_ratio: Scalar::from_int(10),
+            contact_push_speed: Scalar::from_int(3),
+            restitution_threshold: Scalar::from_int(1),
             arbiter_persistence: 3,
         }
     }
 
     fn validate(&self) -> Result<(), Error> {
         let b = self.bounds;
-        let inside = |v: Scalar| v.saturating_abs() <= MAX_COORDINATE;
+        let inside = |v: Scalar| v.abs() <= MAX_COORDINATE;
         if !(inside(b.min.x) && inside(b.min.y) && inside(b.max.x) && inside(b.max.y)) {
             return Err(Error::OutOfRange { what: "world bounds" });
         }
@@ -133,8 +133,8 @@ impl WorldDef {
         if self.substeps == 0 || self.substeps > MAX_SUBSTEPS {
             return Err(Error::OutOfRange { what: "substeps" });
         }
-        let hundred = Scalar::const_from_int(100);
-        if self.contact_hertz < ZERO || self.contact_hertz > Scalar::const_from_int(1000) {
+        let hundred = Scalar::from_int(100);
+        if self.contact_hertz < ZERO || self.contact_hertz > Scalar::from_int(1000) {
             return Err(Error::OutOfRange { what: "contact_hertz" });
         }
         if self.contact_damping_ratio < ZERO || self.contact_damping_ratio > hundred {
@@ -530,13 +530,13 @@ impl<'a> World<'a> {
         let moving = body_type != BodyType::Static;
         let v = if moving { def.linear_velocity } else { Vector2::ZERO };
         let w = if moving { def.angular_velocity } else { ZERO };
-        if v.x.saturating_abs() > self.def.max_linear_speed
-            || v.y.saturating_abs() > self.def.max_linear_speed
+        if v.x.abs() > self.def.max_linear_speed
+            || v.y.abs() > self.def.max_linear_speed
             || v.length() > self.def.max_linear_speed
         {
             return Err(Error::OutOfRange { what: "linear velocity" });
         }
-        if w.saturating_abs() > self.def.max_angular_speed {
+        if w.abs() > self.def.max_angular_speed {
             return Err(Error::OutOfRange { what: "angular velocity" });
         }
         let mut body = Body {

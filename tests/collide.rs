@@ -8,7 +8,7 @@ use arphysics::collide::{
     collide_circles, collide_polygon_circle, collide_polygons, Manifold, REFERENCE_FACE_TOLERANCE,
 };
 use arphysics::geometry::PolygonPath;
-use arphysics::math::scalar::{checked_from_f64, to_f64};
+use arphysics::math::scalar::checked_from_f64;
 use arphysics::{Rot, Scalar, Transform, Vector2};
 use proptest::prelude::*;
 
@@ -23,7 +23,7 @@ fn s(v: f64) -> Scalar {
 }
 
 fn f(v: Vector2) -> P {
-    (to_f64(v.x), to_f64(v.y))
+    (v.x.to_f64(), v.y.to_f64())
 }
 
 fn sub(a: P, b: P) -> P {
@@ -47,13 +47,13 @@ struct Place {
 impl Place {
     /// World position of a local point, in floats.
     fn apply(self, p: P) -> P {
-        let (c, s_) = (to_f64(self.xf.q.c), to_f64(self.xf.q.s));
+        let (c, s_) = (self.xf.q.c.to_f64(), self.xf.q.s.to_f64());
         let o = f(self.xf.p);
         (o.0 + c * p.0 - s_ * p.1, o.1 + s_ * p.0 + c * p.1)
     }
     /// Local coordinates of a world point, in floats.
     fn apply_inv(self, p: P) -> P {
-        let (c, s_) = (to_f64(self.xf.q.c), to_f64(self.xf.q.s));
+        let (c, s_) = (self.xf.q.c.to_f64(), self.xf.q.s.to_f64());
         let d = sub(p, f(self.xf.p));
         (c * d.0 + s_ * d.1, -s_ * d.0 + c * d.1)
     }
@@ -73,7 +73,7 @@ fn arb_rect() -> impl Strategy<Value = (PolygonPath, P)> {
     (0.1..4.0f64, 0.1..4.0f64).prop_map(|(w, h)| {
         let (w, h) = (s(w), s(h));
         let poly = PolygonPath::rectangle(w, h).unwrap_or_else(|e| panic!("{e}"));
-        (poly, (to_f64(w) / 2.0, to_f64(h) / 2.0))
+        (poly, (w.to_f64() / 2.0, h.to_f64() / 2.0))
     })
 }
 
@@ -148,7 +148,7 @@ fn check_common(m: &Manifold, margin: Scalar) -> Result<(), TestCaseError> {
 fn check_inside(m: &Manifold, distance_to_shape: impl Fn(P) -> f64) -> Result<(), TestCaseError> {
     for p in m.points() {
         let d = distance_to_shape(f(p.point));
-        let allowed = to_f64(p.separation).abs() + 1e-4;
+        let allowed = p.separation.to_f64().abs() + 1e-4;
         prop_assert!(d <= allowed, "point {:?} is {} from the shape (allowed {})", p.point, d, allowed);
     }
     Ok(())
@@ -164,7 +164,7 @@ fn check_anchors(m: &Manifold, a: Place, b: Place) -> Result<(), TestCaseError> 
 }
 
 fn min_separation(m: &Manifold) -> f64 {
-    m.points().iter().map(|p| to_f64(p.separation)).fold(f64::INFINITY, f64::min)
+    m.points().iter().map(|p| p.separation.to_f64()).fold(f64::INFINITY, f64::min)
 }
 
 proptest! {
@@ -176,27 +176,27 @@ proptest! {
         check_common(&m, margin)?;
         check_anchors(&m, a, b)?;
         let (ca, cb) = (f(a.xf.p), f(b.xf.p));
-        let gap = len(sub(cb, ca)) - to_f64(ra) - to_f64(rb);
-        if gap > to_f64(margin) + EPS {
+        let gap = len(sub(cb, ca)) - ra.to_f64() - rb.to_f64();
+        if gap > margin.to_f64() + EPS {
             prop_assert_eq!(m.count, 0);
         }
-        if gap < to_f64(margin) - EPS {
+        if gap < margin.to_f64() - EPS {
             prop_assert_eq!(m.count, 1);
-            prop_assert!((to_f64(m.points[0].separation) - gap).abs() < EPS);
+            prop_assert!((m.points[0].separation.to_f64() - gap).abs() < EPS);
             let n = f(m.normal);
             if len(sub(cb, ca)) > 1e-3 {
                 // Along the line of centres, from A to B.
                 prop_assert!(dot(n, sub(cb, ca)) > 0.0);
             }
         }
-        check_inside(&m, |p| len(sub(p, ca)) - to_f64(ra))?;
-        check_inside(&m, |p| len(sub(p, cb)) - to_f64(rb))?;
+        check_inside(&m, |p| len(sub(p, ca)) - ra.to_f64())?;
+        check_inside(&m, |p| len(sub(p, cb)) - rb.to_f64())?;
 
         let swapped = collide_circles(rb, b.xf, ra, a.xf, margin);
         prop_assert_eq!(swapped.count, m.count);
         if m.count == 1 && len(sub(cb, ca)) > 1e-6 {
-            prop_assert!(len(sub(f(m.normal), (-to_f64(swapped.normal.x), -to_f64(swapped.normal.y)))) < EPS);
-            prop_assert!((to_f64(m.points[0].separation) - to_f64(swapped.points[0].separation)).abs() < EPS);
+            prop_assert!(len(sub(f(m.normal), (-swapped.normal.x.to_f64(), -swapped.normal.y.to_f64()))) < EPS);
+            prop_assert!((m.points[0].separation.to_f64() - swapped.points[0].separation.to_f64()).abs() < EPS);
             prop_assert!(len(sub(f(m.points[0].point), f(swapped.points[0].point))) < EPS);
         }
     }
@@ -209,17 +209,17 @@ proptest! {
         let centre = f(b.xf.p);
         // Signed distance from the circle's surface to the rectangle: exactly what
         // the separation must be.
-        let gap = rect_distance(centre, a, half) - to_f64(r);
-        if gap > to_f64(margin) + EPS {
+        let gap = rect_distance(centre, a, half) - r.to_f64();
+        if gap > margin.to_f64() + EPS {
             prop_assert_eq!(m.count, 0);
         }
-        if gap < to_f64(margin) - EPS {
+        if gap < margin.to_f64() - EPS {
             prop_assert_eq!(m.count, 1);
-            prop_assert!((to_f64(m.points[0].separation) - gap).abs() < EPS,
+            prop_assert!((m.points[0].separation.to_f64() - gap).abs() < EPS,
                 "separation {:?}, expected {}", m.points[0].separation, gap);
         }
         check_inside(&m, |p| rect_distance(p, a, half))?;
-        check_inside(&m, |p| len(sub(p, centre)) - to_f64(r))?;
+        check_inside(&m, |p| len(sub(p, centre)) - r.to_f64())?;
     }
 
     #[test]
@@ -230,7 +230,7 @@ proptest! {
         let (va, vb) = (rect_vertices(a, ha), rect_vertices(b, hb));
         let (sep_a, sep_b) = (best_face_separation(&va, &vb), best_face_separation(&vb, &va));
         let distance = polygon_distance(&va, &vb);
-        if distance > to_f64(margin) + EPS {
+        if distance > margin.to_f64() + EPS {
             prop_assert_eq!(m.count, 0);
         }
         // Overlapping shapes always produce a contact, no deeper than the least
@@ -239,7 +239,7 @@ proptest! {
             prop_assert!(m.count >= 1, "overlap by {} missed", sep_a.max(sep_b));
         }
         if m.count > 0 {
-            let floor = sep_a.max(sep_b) - to_f64(REFERENCE_FACE_TOLERANCE) - EPS;
+            let floor = sep_a.max(sep_b) - REFERENCE_FACE_TOLERANCE.to_f64() - EPS;
             prop_assert!(min_separation(&m) >= floor, "{} < {}", min_separation(&m), floor);
             if distance > EPS {
                 // Apart: a speculative point never claims less than the true gap.
@@ -251,7 +251,7 @@ proptest! {
 
         let swapped = collide_polygons(&pb, b.xf, &pa, a.xf, margin);
         prop_assert_eq!(swapped.count > 0, m.count > 0);
-        if m.count > 0 && (sep_a - sep_b).abs() > to_f64(REFERENCE_FACE_TOLERANCE) + EPS {
+        if m.count > 0 && (sep_a - sep_b).abs() > REFERENCE_FACE_TOLERANCE.to_f64() + EPS {
             // Unambiguous: the same polygon's face is the reference either way,
             // so the same numbers are computed in the same frame: exactly
             // mirrored. The ends are named from each call's A and B, so two

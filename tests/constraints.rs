@@ -301,8 +301,7 @@ impl Constraint for KeepAbove {
     fn solve(&mut self, a: &mut Body, _: &mut Body, h: Scalar) {
         let below = self.floor - (a.position().y - a.bounding_radius());
         let vy = a.linear_velocity().y;
-        if below > Scalar::ZERO || vy.saturating_mul(h) < -(a.position().y - a.bounding_radius() - self.floor)
-        {
+        if below > Scalar::ZERO || vy * h < -(a.position().y - a.bounding_radius() - self.floor) {
             // Stop the fall at the line within this sub-step.
             let target = (self.floor - (a.position().y - a.bounding_radius())) / h;
             if vy < target {

@@ -20,7 +20,7 @@ fn v(x: f64, y: f64) -> Vector2 {
 }
 
 fn f(x: Scalar) -> f64 {
-    scalar::to_f64(x)
+    x.to_f64()
 }
 
 fn raw(p: Vector2) -> (i128, i128) {

@@ -55,7 +55,7 @@ pub struct Shapes {
 fn regular(n: i32, radius_cm: i32) -> Result<PolygonPath, Error> {
     let corners: Vec<Vector2> = (0..n)
         .map(|k| {
-            Rot::from_angle(Scalar::TAU * i64::from(k) / i64::from(n) + Scalar::FRAC_PI_2)
+            Rot::from_angle(Scalar::TAU * k / n + Scalar::FRAC_PI_2)
                 .rotate(Vector2::new(cm(radius_cm), cm(0)))
         })
         .collect();

@@ -89,7 +89,7 @@ impl S {
                 Special::MaxSpeed => Scalar::from_bits(2048 << 32),
                 Special::MaxRadius => Scalar::from_bits(128 << 32),
                 Special::Pi => Scalar::PI,
-                Special::NegPi => Scalar::PI.saturating_neg(),
+                Special::NegPi => -Scalar::PI,
                 Special::Quarter => Scalar::from_bits(1 << 30),
                 Special::Huge => Scalar::from_bits(i64::MAX >> 1),
                 Special::NegHuge => Scalar::from_bits(i64::MIN >> 1),
@@ -333,7 +333,7 @@ impl PathSpec {
                 let n = 3 + i64::from(*n % 8);
                 let pts: Vec<Vector2> = (0..n)
                     .map(|i| {
-                        let a = Scalar::TAU.saturating_mul(Scalar::from_num(i)) / Scalar::from_num(n);
+                        let a = Scalar::TAU * Scalar::from_num(i) / Scalar::from_num(n);
                         arphysics::Rot::from_angle(a).rotate(Vector2::new(r.get(), Scalar::ZERO))
                     })
                     .collect();
@@ -959,7 +959,7 @@ impl ForceGenerator for FuzzGenerator {
     }
     fn apply(&mut self, _: BodyHandle, body: &mut Body, dt: Scalar) {
         body.apply_force(self.force, dt);
-        body.apply_angular_impulse(self.torque.saturating_mul(dt));
+        body.apply_angular_impulse(self.torque * dt);
         if self.set_velocity {
             body.set_linear_velocity(self.force);
             body.set_angular_velocity(self.torque);
@@ -1012,8 +1012,8 @@ impl Constraint for FuzzConstraint {
                 // A soft distance constraint, written as a game would.
                 let d = b.position() - a.position();
                 let (n, len) = d.normalize_and_length();
-                let err = len.saturating_sub(self.offset.length());
-                let j = n * err.saturating_mul(self.angular);
+                let err = len - self.offset.length();
+                let j = n * (err * self.angular);
                 a.apply_linear_impulse(j + self.prepared);
                 b.apply_linear_impulse(-j);
             }
@@ -1687,8 +1687,8 @@ impl<'w> Runner<'w> {
         let n = 1 + i64::from(p.count % 16);
         let mut below: Option<BodyHandle> = None;
         for i in 0..n {
-            let x = c.x + sixty_fourth(p.shift).saturating_mul(Scalar::from_num(i));
-            let y = floor_y + half + (one + sixty_fourth(p.gap)).saturating_mul(Scalar::from_num(i));
+            let x = c.x + sixty_fourth(p.shift) * Scalar::from_num(i);
+            let y = floor_y + half + (one + sixty_fourth(p.gap)) * Scalar::from_num(i);
             let use_box = box_path.is_some() && (p.flags & 2 == 0 || i % 2 == 0);
             let mut def = match box_path {
                 Some(b) if use_box => BodyDef::polygon(b),

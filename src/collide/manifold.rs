@@ -5,7 +5,6 @@
 //! numbers stay small whatever the world position) and then calls
 //! [`Manifold::from_local`] once to express them in world orientation.
 
-use crate::math::scalar::ScalarExt as _;
 use crate::math::scalar::{Scalar, HALF, ZERO};
 use crate::math::{Transform, Vector2};
 
@@ -118,7 +117,7 @@ pub(crate) struct LocalPoint {
 /// `x / 2` (its lowest bit rounded as the `fixed` crate rounds products).
 #[inline]
 pub(crate) fn half(x: Scalar) -> Scalar {
-    x.sat_mul(HALF)
+    x * HALF
 }
 
 /// The unit vector along `v` and the length of `v` (m), or `None` for the zero
@@ -144,12 +143,12 @@ mod tests {
     use crate::math::Rot;
 
     fn unit_error(n: Vector2) -> Scalar {
-        n.length_squared().saturating_sub(ONE).abs()
+        (n.length_squared() - ONE).abs()
     }
 
     #[test]
     fn direction_of_a_tiny_vector_is_unit_and_exact() {
-        let tiny = Vector2::new(scalar::EPSILON, scalar::EPSILON.sat_mul(from_int(2)));
+        let tiny = Vector2::new(scalar::EPSILON, scalar::EPSILON * from_int(2));
         let (n, len) = direction_and_length(tiny).unwrap_or_default();
         assert!(unit_error(n) < Scalar::lit("1e-9"), "{n:?}");
         // |(1, 2)| · 2^-32 = 2.236 · 2^-32: 2 ulps after rounding.

@@ -57,7 +57,7 @@ mod test_support {
 
     /// `a` and `b` within [`TOL`].
     pub fn near(a: Scalar, b: Scalar) -> bool {
-        a.saturating_sub(b).abs() < TOL
+        (a - b).abs() < TOL
     }
 
     /// The vector `(x, y)` from decimal literals.

@@ -47,7 +47,7 @@ pub fn collide_polygon_circle(
         return Manifold::EMPTY;
     };
     // The distance to the polygon is at least the face separation: far enough ⇒ done.
-    if face_separation > radius_b.saturating_add(margin) {
+    if face_separation > radius_b + margin {
         return Manifold::EMPTY;
     }
     let (Some(&v1), Some(&v2), Some(&face_normal)) =
@@ -77,7 +77,7 @@ pub fn collide_polygon_circle(
             // Face region, or the centre inside: project the centre onto the face.
             None => (face_normal, centre - face_normal * face_separation, face_separation),
         };
-    let separation = distance.saturating_sub(radius_b);
+    let separation = distance - radius_b;
     if separation > margin {
         return Manifold::EMPTY;
     }

@@ -110,7 +110,7 @@ pub fn collide_polygons(
         return Manifold::EMPTY;
     }
 
-    let flip = sep_b > sep_a.saturating_add(REFERENCE_FACE_TOLERANCE);
+    let flip = sep_b > sep_a + REFERENCE_FACE_TOLERANCE;
     let reference = if flip {
         Reference {
             poly: poly_b,
@@ -355,13 +355,13 @@ fn single(
 /// moved end's divisor (`tau_q − tau_p`) is never zero.
 fn clip_end(p: Vector2, q: Vector2, tau_p: Scalar, tau_q: Scalar, length: Scalar) -> Vector2 {
     let (over, span) = if tau_p < Scalar::ZERO {
-        (tau_p.saturating_neg(), tau_q.saturating_sub(tau_p))
+        (-tau_p, tau_q - tau_p)
     } else if tau_p > length {
-        (tau_p.saturating_sub(length), tau_p.saturating_sub(tau_q))
+        (tau_p - length, tau_p - tau_q)
     } else {
         return p;
     };
-    let ratio = crate::math::scalar::clamp(crate::math::scalar::div(over, span), Scalar::ZERO, Scalar::ONE);
+    let ratio = over.div_or_zero(span).clamp(Scalar::ZERO, Scalar::ONE);
     p + (q - p) * ratio
 }
 
@@ -583,7 +583,7 @@ mod tests {
         // Two right triangles whose hypotenuses overlap by 0.1 along the diagonal.
         let lower = polygon(&[v("0", "0"), v("1", "0"), v("0", "1")]);
         let upper = polygon(&[v("1", "1"), v("0", "1"), v("1", "0")]);
-        let shift = Scalar::lit("0.1").saturating_mul(Scalar::FRAC_1_SQRT_2);
+        let shift = Scalar::lit("0.1") * Scalar::FRAC_1_SQRT_2;
         let xf_b = Transform::new(Vector2::new(-shift, -shift), Rot::IDENTITY);
         let m = collide_polygons(&lower, at("0", "0"), &upper, xf_b, ZERO);
         assert_eq!(m.count, 2);

@@ -40,7 +40,7 @@ use managed::Managed;
 use crate::arena::Handle;
 use crate::body::{Body, BodyHandle};
 use crate::error::Error;
-use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
+use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::Matrix22;
 use crate::math::{Rect, Rot, Vector2};
 use crate::solver::SolverBody;
@@ -48,9 +48,9 @@ use crate::world::MAX_BODY_RADIUS;
 
 /// Stiffness of the soft position correction of rods, ropes, pivots and welds, Hz
 /// (Box2D v3's joint default; capped at a quarter of the sub-step rate).
-pub const JOINT_HERTZ: Scalar = Scalar::const_from_int(60);
+pub const JOINT_HERTZ: Scalar = Scalar::from_int(60);
 /// Damping ratio of that correction (Box2D v3's joint default).
-pub const JOINT_DAMPING_RATIO: Scalar = Scalar::const_from_int(2);
+pub const JOINT_DAMPING_RATIO: Scalar = Scalar::from_int(2);
 /// Game constraints ([`Constraint`] objects) a world can hold.
 pub const MAX_USER_CONSTRAINTS: usize = 16;
 
@@ -266,7 +266,7 @@ impl Joint {
 
 /// Largest anchor offset from a body's centre of mass: twice the largest body.
 fn max_anchor() -> Scalar {
-    MAX_BODY_RADIUS.sat_mul(scalar::TWO)
+    MAX_BODY_RADIUS * scalar::TWO
 }
 
 /// Checks a definition against the bodies it names (looked up by the caller).
@@ -274,7 +274,7 @@ pub(crate) fn validate(def: &JointDef, a: &Body, b: Option<&Body>, bounds: Rect)
     if Some(def.body_a) == def.body_b {
         return Err(Error::InvalidOperation { what: "a joint between a body and itself" });
     }
-    let sane = |v: Vector2| v.x.saturating_abs() <= max_anchor() && v.y.saturating_abs() <= max_anchor();
+    let sane = |v: Vector2| v.x.abs() <= max_anchor() && v.y.abs() <= max_anchor();
     if !sane(def.anchor_a) {
         return Err(Error::OutOfRange { what: "anchor" });
     }
@@ -302,18 +302,18 @@ pub(crate) fn validate(def: &JointDef, a: &Body, b: Option<&Body>, bounds: Rect)
 /// The checks on a definition's own values (no bodies needed): anchors, kind
 /// parameters, break impulse. Also used to validate snapshots.
 pub(crate) fn validate_params(def: &JointDef) -> Result<(), Error> {
-    let sane = |v: Vector2| v.x.saturating_abs() <= max_anchor() && v.y.saturating_abs() <= max_anchor();
+    let sane = |v: Vector2| v.x.abs() <= max_anchor() && v.y.abs() <= max_anchor();
     if !sane(def.anchor_a) || (def.body_b.is_some() && !sane(def.anchor_b)) {
         return Err(Error::OutOfRange { what: "anchor" });
     }
     if def.body_b.is_none()
-        && (def.anchor_b.x.saturating_abs() > crate::world::MAX_COORDINATE
-            || def.anchor_b.y.saturating_abs() > crate::world::MAX_COORDINATE)
+        && (def.anchor_b.x.abs() > crate::world::MAX_COORDINATE
+            || def.anchor_b.y.abs() > crate::world::MAX_COORDINATE)
     {
         return Err(Error::OutOfRange { what: "anchor" });
     }
     let non_negative = |v: Scalar, what| if v < ZERO { Err(Error::OutOfRange { what }) } else { Ok(()) };
-    let limit = MAX_BODY_RADIUS.sat_mul(Scalar::const_from_int(8));
+    let limit = MAX_BODY_RADIUS * Scalar::from_int(8);
     match def.kind {
         JointKind::Spring { stiffness, rest_length } => {
             non_negative(stiffness, "stiffness")?;
@@ -382,7 +382,7 @@ impl Joint {
         // Divisions are slow in fixed point: the masses are inverted once per
         // step, at the step's anchors, as Box2D v2 does (v3 re-solves the 2×2
         // system every iteration, which here would cost two divisions a time).
-        self.axial_mass = scalar::recip(ia.saturating_add(ib));
+        self.axial_mass = (ia + ib).recip();
         self.point_mass = if matches!(self.def.kind, JointKind::Pivot { .. } | JointKind::Weld) {
             let ra = a.rotation.rotate(self.def.anchor_a);
             let rb = b.rotation.rotate(self.def.anchor_b);
@@ -391,7 +391,7 @@ impl Joint {
             None
         };
         const QUARTER: Scalar = Scalar::lit("0.25");
-        let hertz = JOINT_HERTZ.min(scalar::recip(h).sat_mul(QUARTER));
+        let hertz = JOINT_HERTZ.min(h.recip() * QUARTER);
         self.soft = crate::solver::Softness::new(hertz, JOINT_DAMPING_RATIO, h);
         self.step_linear = Vector2::ZERO;
     }
@@ -454,16 +454,16 @@ fn point_mass_inverse(
     ib: Scalar,
     rb: Vector2,
 ) -> Option<Matrix22> {
-    let m = ma.saturating_add(mb);
-    let k11 = m.saturating_add(ia.sat_mul(ra.y.sat_mul(ra.y))).saturating_add(ib.sat_mul(rb.y.sat_mul(rb.y)));
-    let k12 = ia.sat_mul(ra.x.sat_mul(ra.y)).saturating_add(ib.sat_mul(rb.x.sat_mul(rb.y))).saturating_neg();
-    let k22 = m.saturating_add(ia.sat_mul(ra.x.sat_mul(ra.x))).saturating_add(ib.sat_mul(rb.x.sat_mul(rb.x)));
-    let det = k11.sat_mul(k22).saturating_sub(k12.sat_mul(k12));
+    let m = ma + mb;
+    let k11 = (m + (ia * (ra.y * ra.y))) + (ib * (rb.y * rb.y));
+    let k12 = -((ia * (ra.x * ra.y)) + (ib * (rb.x * rb.y)));
+    let k22 = (m + (ia * (ra.x * ra.x))) + (ib * (rb.x * rb.x));
+    let det = (k11 * k22) - (k12 * k12);
     if det <= ZERO {
         return None;
     }
-    let off = scalar::div(k12.saturating_neg(), det);
-    Some(Matrix22::new(scalar::div(k22, det), off, off, scalar::div(k11, det)))
+    let off = (-k12).div_or_zero(det);
+    Some(Matrix22::new(k22.div_or_zero(det), off, off, k11.div_or_zero(det)))
 }
 
 /// Applies a linear impulse `p` at offsets `ra` (negated on A) and `rb`.
@@ -477,16 +477,16 @@ pub(crate) fn apply_linear(
 ) {
     let ([ma, mb], [ia, ib]) = (j.inv_mass, j.inv_inertia);
     a.v -= p * ma;
-    a.w = a.w.saturating_sub(ia.sat_mul(ra.cross(p)));
+    a.w -= ia * ra.cross(p);
     b.v += p * mb;
-    b.w = b.w.saturating_add(ib.sat_mul(rb.cross(p)));
+    b.w += ib * rb.cross(p);
 }
 
 /// Applies an angular impulse `l` (negated on A).
 pub(crate) fn apply_angular(j: &Joint, a: &mut SolverBody, b: &mut SolverBody, l: Scalar) {
     let [ia, ib] = j.inv_inertia;
-    a.w = a.w.saturating_sub(ia.sat_mul(l));
-    b.w = b.w.saturating_add(ib.sat_mul(l));
+    a.w -= ia * l;
+    b.w += ib * l;
 }
 
 /// A game's constraint stored in a world.

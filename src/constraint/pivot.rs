@@ -1,7 +1,7 @@
 //! Pivot (revolute) joint: a point constraint, optional angle limits, optional motor.
 
 use super::{anchors, apply_angular, apply_linear, Joint, MaxTorque, Motor};
-use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
+use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::Vector2;
 use crate::solver::SolverBody;
 
@@ -9,8 +9,8 @@ pub(super) fn warm_start(j: &mut Joint, a: &mut SolverBody, b: &mut SolverBody) 
     let (ra, rb, _) = anchors(j, a, b);
     j.step_linear += j.impulse;
     apply_linear(j, a, b, ra, rb, j.impulse);
-    let angular = j.motor_impulse.saturating_add(j.limit_impulse).saturating_sub(j.angular_impulse);
-    apply_angular(j, a, b, angular.sat_mul(orientation(j)));
+    let angular = (j.motor_impulse + j.limit_impulse) - j.angular_impulse;
+    apply_angular(j, a, b, angular * orientation(j));
 }
 
 /// The relative angle θB − θA measured from the angle at creation, in (−π, π].
@@ -40,35 +40,35 @@ pub(super) fn solve(
 ) {
     let axial = j.axial_mass;
     let sign = orientation(j);
-    let relative_rate = |a: &SolverBody, b: &SolverBody| b.w.saturating_sub(a.w).sat_mul(sign);
+    let relative_rate = |a: &SolverBody, b: &SolverBody| (b.w - a.w) * sign;
     if let Some(m) = motor {
         // Drive the relative spin towards the target; no position error, no bias.
-        let rate = relative_rate(a, b).saturating_sub(m.speed);
-        let impulse = axial.sat_mul(rate).saturating_neg();
+        let rate = relative_rate(a, b) - m.speed;
+        let impulse = -(axial * rate);
         let new = match m.max_torque {
             MaxTorque::Limited(t) => {
-                let max = t.sat_mul(h);
-                scalar::clamp(j.motor_impulse.saturating_add(impulse), max.saturating_neg(), max)
+                let max = t * h;
+                (j.motor_impulse + impulse).clamp(-max, max)
             }
-            MaxTorque::Unlimited => j.motor_impulse.saturating_add(impulse),
+            MaxTorque::Unlimited => j.motor_impulse + impulse,
         };
-        let applied = new.saturating_sub(j.motor_impulse);
+        let applied = new - j.motor_impulse;
         j.motor_impulse = new;
-        apply_angular(j, a, b, applied.sat_mul(sign));
+        apply_angular(j, a, b, applied * sign);
     }
     if let Some((lower, upper)) = limits {
-        let angle = relative_angle(j, a, b).sat_mul(sign);
+        let angle = relative_angle(j, a, b) * sign;
         // Lower limit: θ − lower ≥ 0, pushes θ up (impulse ≥ 0).
-        let c = angle.saturating_sub(lower);
+        let c = angle - lower;
         let applied = limit_step(j, c, relative_rate(a, b), axial, h, use_bias, j.limit_impulse);
-        j.limit_impulse = j.limit_impulse.saturating_add(applied);
-        apply_angular(j, a, b, applied.sat_mul(sign));
+        j.limit_impulse += applied;
+        apply_angular(j, a, b, applied * sign);
         // Upper limit: upper − θ ≥ 0, pushes θ down (stored as a positive impulse).
-        let c = upper.saturating_sub(angle);
-        let rate = relative_rate(a, b).saturating_neg();
+        let c = upper - angle;
+        let rate = -relative_rate(a, b);
         let applied = limit_step(j, c, rate, axial, h, use_bias, j.angular_impulse);
-        j.angular_impulse = j.angular_impulse.saturating_add(applied);
-        apply_angular(j, a, b, applied.sat_mul(sign).saturating_neg());
+        j.angular_impulse += applied;
+        apply_angular(j, a, b, -(applied * sign));
     }
     solve_point(j, a, b, use_bias);
 }
@@ -85,19 +85,15 @@ fn limit_step(
     old: Scalar,
 ) -> Scalar {
     let (bias, mass_scale, impulse_scale) = if c > ZERO {
-        (c.sat_mul(scalar::recip(h)), scalar::ONE, ZERO)
+        (c * h.recip(), scalar::ONE, ZERO)
     } else if use_bias {
-        (c.sat_mul(j.soft.bias_rate), j.soft.mass_scale, j.soft.impulse_scale)
+        (c * j.soft.bias_rate, j.soft.mass_scale, j.soft.impulse_scale)
     } else {
         (ZERO, scalar::ONE, ZERO)
     };
-    let impulse = axial
-        .sat_mul(mass_scale)
-        .sat_mul(rate.saturating_add(bias))
-        .saturating_neg()
-        .saturating_sub(impulse_scale.sat_mul(old));
-    let new = old.saturating_add(impulse).max(ZERO);
-    new.saturating_sub(old)
+    let impulse = (-(axial * mass_scale * (rate + bias))) - (impulse_scale * old);
+    let new = (old + impulse).max(ZERO);
+    new - old
 }
 
 /// The point constraint shared with the weld joint: the anchors coincide.

@@ -1,7 +1,7 @@
 //! Rod (fixed distance) and rope (maximum distance) between the anchors.
 
 use super::{anchors, apply_linear, Joint};
-use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
+use crate::math::scalar::{self, Scalar, ZERO};
 use crate::solver::SolverBody;
 
 pub(super) fn warm_start(j: &mut Joint, a: &mut SolverBody, b: &mut SolverBody) {
@@ -30,32 +30,25 @@ pub(super) fn solve(
     }
     let ([ma, mb], [ia, ib]) = (j.inv_mass, j.inv_inertia);
     let (rna, rnb) = (ra.cross(axis), rb.cross(axis));
-    let k = ma
-        .saturating_add(mb)
-        .saturating_add(ia.sat_mul(rna.sat_mul(rna)))
-        .saturating_add(ib.sat_mul(rnb.sat_mul(rnb)));
-    let mass = scalar::recip(k);
-    let c = len.saturating_sub(length);
+    let k = ((ma + mb) + (ia * (rna * rna))) + (ib * (rnb * rnb));
+    let mass = k.recip();
+    let c = len - length;
     let rate = (b.velocity_at_offset(rb) - a.velocity_at_offset(ra)).dot(axis);
     let (bias, mass_scale, impulse_scale) = if rope && c < ZERO {
         // Slack: let it lengthen up to the slack within this sub-step, no more.
-        (c.sat_mul(scalar::recip(h)), scalar::ONE, ZERO)
+        (c * h.recip(), scalar::ONE, ZERO)
     } else if use_bias {
-        (c.sat_mul(j.soft.bias_rate), j.soft.mass_scale, j.soft.impulse_scale)
+        (c * j.soft.bias_rate, j.soft.mass_scale, j.soft.impulse_scale)
     } else {
         (ZERO, scalar::ONE, ZERO)
     };
-    let impulse = mass
-        .sat_mul(mass_scale)
-        .sat_mul(rate.saturating_add(bias))
-        .saturating_neg()
-        .saturating_sub(impulse_scale.sat_mul(j.impulse.x));
-    let mut new = j.impulse.x.saturating_add(impulse);
+    let impulse = (-(mass * mass_scale * (rate + bias))) - (impulse_scale * j.impulse.x);
+    let mut new = j.impulse.x + impulse;
     if rope {
         // A rope only pulls: the impulse on B along A→B is never positive.
         new = new.min(ZERO);
     }
-    let applied = new.saturating_sub(j.impulse.x);
+    let applied = new - j.impulse.x;
     j.impulse.x = new;
     let p = axis * applied;
     j.step_linear += p;

@@ -1,7 +1,7 @@
 //! Spring and damped spring: an explicit force along the line between the anchors.
 
 use super::{anchors, apply_linear, Joint};
-use crate::math::scalar::{Scalar, ScalarExt as _, ZERO};
+use crate::math::scalar::{Scalar, ZERO};
 use crate::solver::SolverBody;
 
 /// Applies F = −k·(ℓ − ℓ₀) − c·ℓ̇ along the anchor line for a sub-step of `h`
@@ -21,10 +21,10 @@ pub(super) fn apply(
     if len == ZERO {
         return;
     }
-    let stretch = len.saturating_sub(rest);
+    let stretch = len - rest;
     let rate = (b.velocity_at_offset(rb) - a.velocity_at_offset(ra)).dot(axis);
-    let force = k.sat_mul(stretch).saturating_add(c.sat_mul(rate)).saturating_neg();
-    let p = axis * force.sat_mul(h);
+    let force = -((k * stretch) + (c * rate));
+    let p = axis * (force * h);
     j.step_linear += p;
     apply_linear(j, a, b, ra, rb, p);
 }

@@ -2,7 +2,7 @@
 
 use super::pivot::{relative_angle, solve_point};
 use super::{anchors, apply_angular, apply_linear, Joint};
-use crate::math::scalar::{self, ScalarExt as _, ZERO};
+use crate::math::scalar::{self, ZERO};
 use crate::solver::SolverBody;
 
 pub(super) fn warm_start(j: &mut Joint, a: &mut SolverBody, b: &mut SolverBody) {
@@ -20,18 +20,14 @@ pub(super) fn solve(
     use_bias: bool,
 ) {
     let axial = j.axial_mass;
-    let rate = b.w.saturating_sub(a.w);
+    let rate = b.w - a.w;
     let (bias, mass_scale, impulse_scale) = if use_bias {
-        (relative_angle(j, a, b).sat_mul(j.soft.bias_rate), j.soft.mass_scale, j.soft.impulse_scale)
+        (relative_angle(j, a, b) * j.soft.bias_rate, j.soft.mass_scale, j.soft.impulse_scale)
     } else {
         (ZERO, scalar::ONE, ZERO)
     };
-    let impulse = axial
-        .sat_mul(mass_scale)
-        .sat_mul(rate.saturating_add(bias))
-        .saturating_neg()
-        .saturating_sub(impulse_scale.sat_mul(j.angular_impulse));
-    j.angular_impulse = j.angular_impulse.saturating_add(impulse);
+    let impulse = (-(axial * mass_scale * (rate + bias))) - (impulse_scale * j.angular_impulse);
+    j.angular_impulse += impulse;
     apply_angular(j, a, b, impulse);
     solve_point(j, a, b, use_bias);
 }

@@ -2,7 +2,6 @@
 
 use super::{ForceGenerator, Targets};
 use crate::body::{Body, BodyHandle};
-use crate::math::scalar::ScalarExt as _;
 use crate::math::{Scalar, Vector2};
 
 /// Accelerates bodies towards `point` at `acceleration` m/s², whatever their
@@ -41,6 +40,6 @@ impl ForceGenerator for GravityToPointForceGenerator {
     fn apply(&mut self, _: BodyHandle, body: &mut Body, dt: Scalar) {
         // `normalize` scales before squaring, so any distance within the world is safe.
         let dir = (self.point - body.position()).normalize();
-        body.add_linear_velocity(dir * self.acceleration.sat_mul(dt));
+        body.add_linear_velocity(dir * (self.acceleration * dt));
     }
 }

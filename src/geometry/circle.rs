@@ -16,7 +16,7 @@ use crate::math::scalar::{Scalar, ZERO};
 /// below the Q32.32 limit of 2.1e9; at 181 m it would reach the limit and at 512 m
 /// it would be 1.1e11. Polygons share the same limit,
 /// [`MAX_POLYGON_RADIUS`](super::MAX_POLYGON_RADIUS).
-pub const MAX_CIRCLE_RADIUS: Scalar = Scalar::const_from_int(128);
+pub const MAX_CIRCLE_RADIUS: Scalar = Scalar::from_int(128);
 
 /// π · 2^64, rounded to nearest (π = 3.243F6A8885A308D3|13… in hexadecimal).
 const PI_Q64: u128 = 0x3_243F_6A88_85A3_08D3;

@@ -29,13 +29,13 @@ use crate::math::scalar::{self, Scalar, ZERO};
 /// Smallest mass of a dynamic body: 0.001 kg (see the [module docs](self)).
 pub const MIN_MASS: Scalar = Scalar::lit("0.001");
 /// Largest mass of a dynamic body: 100,000 kg (see the [module docs](self)).
-pub const MAX_MASS: Scalar = Scalar::const_from_int(100_000);
+pub const MAX_MASS: Scalar = Scalar::from_int(100_000);
 /// Smallest moment of inertia of a dynamic body: 1e-6 kg·m² (see the
 /// [module docs](self)).
 pub const MIN_INERTIA: Scalar = Scalar::lit("0.000001");
 /// Largest moment of inertia of a dynamic body: 1e6 kg·m² (see the
 /// [module docs](self)).
-pub const MAX_INERTIA: Scalar = Scalar::const_from_int(1_000_000);
+pub const MAX_INERTIA: Scalar = Scalar::from_int(1_000_000);
 
 /// Mass properties of a body.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -118,7 +118,7 @@ impl MassData {
         if !(MIN_INERTIA..=MAX_INERTIA).contains(&inertia) {
             return Err(out_of_range("inertia"));
         }
-        Ok(Self { mass, inv_mass: scalar::recip(mass), inertia, inv_inertia: scalar::recip(inertia) })
+        Ok(Self { mass, inv_mass: mass.recip(), inertia, inv_inertia: inertia.recip() })
     }
 }
 

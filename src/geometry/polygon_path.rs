@@ -37,7 +37,7 @@ pub const MAX_POLYGON_VERTICES: usize = 8;
 /// the full disc, `π r⁴ / 2`. At 128 m that is 4.2e8 kg·m², five times below the
 /// Q32.32 limit of 2.1e9. (At 256 m it would be 6.7e9 and overflow.) The same
 /// limit applies to circles, [`MAX_CIRCLE_RADIUS`](super::MAX_CIRCLE_RADIUS).
-pub const MAX_POLYGON_RADIUS: Scalar = Scalar::const_from_int(128);
+pub const MAX_POLYGON_RADIUS: Scalar = Scalar::from_int(128);
 
 /// Smallest area a polygon may have: 2^-20 m² ≈ 9.5e-7 m² (about a 1 mm square).
 ///

@@ -6,7 +6,7 @@
 //! circle when there is a hit), polygons are clipped face by face (Box2D's
 //! method). A ray that starts inside a shape does not hit it.
 
-use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
+use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Transform, Vector2};
 
 use super::PolygonPath;
@@ -36,14 +36,14 @@ pub fn ray_circle(
     let s = m.dot(dir);
     let offset = m - dir * s;
     // |offset| > r: misses; checked by component first so the square is safe.
-    if offset.x.saturating_abs() > radius || offset.y.saturating_abs() > radius {
+    if offset.x.abs() > radius || offset.y.abs() > radius {
         return None;
     }
-    let h2 = radius.sat_mul(radius).saturating_sub(offset.length_squared());
+    let h2 = (radius * radius) - offset.length_squared();
     if h2 < ZERO {
         return None;
     }
-    let t = s.saturating_sub(scalar::sqrt(h2));
+    let t = s - h2.sqrt();
     if t < ZERO || t > length {
         // Behind the origin (or the origin is inside), or beyond the end.
         return None;
@@ -75,11 +75,11 @@ pub fn ray_polygon(
             if numerator < ZERO {
                 return None;
             }
-        } else if denominator < ZERO && numerator < lower.sat_mul(denominator) {
-            lower = scalar::div(numerator, denominator);
+        } else if denominator < ZERO && numerator < lower * denominator {
+            lower = numerator.div_or_zero(denominator);
             entered = Some(i);
-        } else if denominator > ZERO && numerator < upper.sat_mul(denominator) {
-            upper = scalar::div(numerator, denominator);
+        } else if denominator > ZERO && numerator < upper * denominator {
+            upper = numerator.div_or_zero(denominator);
         }
         if upper < lower {
             return None;

@@ -1,10 +1,9 @@
 //! `Matrix22`: a 2×2 matrix, used for point constraints (pivots, welds) and block
 //! solvers.
 
-use crate::math::scalar::ScalarExt as _;
 use core::ops::{Add, Mul};
 
-use super::scalar::{self, Scalar, ZERO};
+use super::scalar::{Scalar, ZERO};
 use super::vector2::Vector2;
 
 /// A 2×2 matrix stored by columns: `[col1 col2]`.
@@ -57,14 +56,9 @@ impl Matrix22 {
         if det == ZERO {
             return None;
         }
-        let inv = scalar::recip(det);
+        let inv = det.recip();
         let (a, b, c, d) = (self.col1.x, self.col2.x, self.col1.y, self.col2.y);
-        Some(Self::new(
-            d.sat_mul(inv),
-            b.saturating_neg().sat_mul(inv),
-            c.saturating_neg().sat_mul(inv),
-            a.sat_mul(inv),
-        ))
+        Some(Self::new(d * inv, -b * inv, -c * inv, a * inv))
     }
 
     /// Solves `self · x = b` for `x`, or `None` when the matrix is singular.
@@ -75,9 +69,9 @@ impl Matrix22 {
             return None;
         }
         let (a11, a12, a21, a22) = (self.col1.x, self.col2.x, self.col1.y, self.col2.y);
-        let x = a22.sat_mul(b.x).saturating_sub(a12.sat_mul(b.y));
-        let y = a11.sat_mul(b.y).saturating_sub(a21.sat_mul(b.x));
-        Some(Vector2::new(scalar::div(x, det), scalar::div(y, det)))
+        let x = (a22 * b.x) - (a12 * b.y);
+        let y = (a11 * b.y) - (a21 * b.x);
+        Some(Vector2::new(x.div_or_zero(det), y.div_or_zero(det)))
     }
 }
 

@@ -40,14 +40,14 @@ impl Rect {
     #[inline]
     #[must_use]
     pub fn width(self) -> Scalar {
-        self.max.x.saturating_sub(self.min.x)
+        self.max.x - self.min.x
     }
 
     /// Height (`max.y − min.y`).
     #[inline]
     #[must_use]
     pub fn height(self) -> Scalar {
-        self.max.y.saturating_sub(self.min.y)
+        self.max.y - self.min.y
     }
 
     /// The centre point.

@@ -10,7 +10,6 @@
 use super::scalar::{Scalar, ONE, ZERO};
 use super::trig;
 use super::vector2::Vector2;
-use crate::math::scalar::ScalarExt as _;
 
 /// A rotation as a unit complex number: `c = cos θ`, `s = sin θ`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -54,37 +53,28 @@ impl Rot {
     #[inline]
     #[must_use]
     pub fn rotate(self, v: Vector2) -> Vector2 {
-        Vector2::new(
-            self.c.sat_mul(v.x).sat_sub(self.s.sat_mul(v.y)),
-            self.s.sat_mul(v.x).sat_add(self.c.sat_mul(v.y)),
-        )
+        Vector2::new(self.c * v.x - self.s * v.y, self.s * v.x + self.c * v.y)
     }
 
     /// `v` rotated by the inverse of this rotation.
     #[inline]
     #[must_use]
     pub fn inv_rotate(self, v: Vector2) -> Vector2 {
-        Vector2::new(
-            self.c.sat_mul(v.x).sat_add(self.s.sat_mul(v.y)),
-            self.c.sat_mul(v.y).sat_sub(self.s.sat_mul(v.x)),
-        )
+        Vector2::new(self.c * v.x + self.s * v.y, self.c * v.y - self.s * v.x)
     }
 
     /// The composition `self ∘ other` (rotate by `other`, then by `self`).
     #[inline]
     #[must_use]
     pub fn compose(self, o: Self) -> Self {
-        Self {
-            c: self.c.sat_mul(o.c).sat_sub(self.s.sat_mul(o.s)),
-            s: self.s.sat_mul(o.c).sat_add(self.c.sat_mul(o.s)),
-        }
+        Self { c: self.c * o.c - self.s * o.s, s: self.s * o.c + self.c * o.s }
     }
 
     /// The inverse rotation.
     #[inline]
     #[must_use]
     pub fn inverse(self) -> Self {
-        Self { c: self.c, s: self.s.saturating_neg() }
+        Self { c: self.c, s: -self.s }
     }
 
     /// The relative rotation `self⁻¹ ∘ other`.
@@ -109,13 +99,13 @@ impl Rot {
         /// 2^-10: the largest |m − 1| rescaled by the series.
         const SERIES_LIMIT: Scalar = Scalar::from_bits(1 << 22);
         const THREE_EIGHTHS: Scalar = Scalar::lit("0.375");
-        let c = self.c.sat_sub(self.s.sat_mul(delta));
-        let s = self.s.sat_add(self.c.sat_mul(delta));
-        let e = c.sat_mul(c).sat_add(s.sat_mul(s)).sat_sub(Scalar::ONE);
-        if e <= SERIES_LIMIT && e >= SERIES_LIMIT.saturating_neg() {
+        let c = self.c - self.s * delta;
+        let s = self.s + self.c * delta;
+        let e = c * c + s * s - Scalar::ONE;
+        if e <= SERIES_LIMIT && e >= -SERIES_LIMIT {
             let half_e = Scalar::from_bits(e.to_bits() >> 1);
-            let k = Scalar::ONE.sat_sub(half_e).sat_add(THREE_EIGHTHS.sat_mul(e.sat_mul(e)));
-            Self { c: c.sat_mul(k), s: s.sat_mul(k) }
+            let k = Scalar::ONE - half_e + THREE_EIGHTHS * (e * e);
+            Self { c: c * k, s: s * k }
         } else {
             Self { c, s }.normalized()
         }
@@ -189,8 +179,8 @@ mod tests {
         let step = Scalar::lit("0.05");
         for _ in 0..10_000 {
             q = q.integrate(step);
-            let len2 = q.c.sat_mul(q.c).sat_add(q.s.sat_mul(q.s));
-            assert!((len2.sat_sub(ONE)).abs() < Scalar::lit("0.000000005"));
+            let len2 = q.c * q.c + q.s * q.s;
+            assert!((len2 - ONE).abs() < Scalar::lit("0.000000005"));
         }
     }
 
@@ -205,11 +195,11 @@ mod tests {
             let n = 20_000;
             for _ in 0..n {
                 q = q.integrate(d);
-                let c = exact.c.sat_sub(exact.s.sat_mul(d));
-                let s = exact.s.sat_add(exact.c.sat_mul(d));
+                let c = exact.c - exact.s * d;
+                let s = exact.s + exact.c * d;
                 exact = Rot { c, s }.normalized();
-                let len2 = q.c.sat_mul(q.c).sat_add(q.s.sat_mul(q.s));
-                assert!((len2.sat_sub(ONE)).abs() < Scalar::lit("0.000000005"), "{step}: {len2}");
+                let len2 = q.c * q.c + q.s * q.s;
+                assert!((len2 - ONE).abs() < Scalar::lit("0.000000005"), "{step}: {len2}");
             }
             let angle = f64::from(n) * d.to_num::<f64>().atan();
             let err = |r: Rot| {

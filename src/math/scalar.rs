@@ -1,20 +1,44 @@
-//! The one number type of the engine and the few helpers every stage uses.
+//! The engine's number type: [`Scalar`], Q32.32 fixed point.
 //!
-//! `Scalar` is Q32.32 fixed point (`fixed::types::I32F32`): 32 integer bits, 32
-//! fraction bits. Resolution is 2^-32 ≈ 2.3e-10 and range ±2^31 ≈ ±2.1e9. The
-//! range of *squared* quantities is therefore only |x| < 46,340, which is why the
-//! engine squares relative, local quantities and never absolute world positions.
+//! `Scalar` wraps `fixed::types::I32F32`: 32 integer bits, 32 fraction bits.
+//! Resolution is 2^-32 ≈ 2.3e-10 and range ±2^31 ≈ ±2.1e9. The range of
+//! *squared* quantities is therefore only |x| < 46,340, which is why the engine
+//! squares relative, local quantities and never absolute world positions.
 //!
-//! # Overflow policy
-//! Plain `*`/`+` on a fixed-point number panic on overflow in debug builds and wrap
-//! in release builds, which would break the contract that both builds behave the
-//! same. Engine code therefore never applies a raw operator to a `Scalar`: it spells
-//! out a policy at every operation (`saturating_*` almost everywhere), and the helpers
-//! here cover the two operations that can fail outright: division by zero and the
-//! square root of a negative number.
+//! # Overflow policy: every operator saturates
+//! `fixed`'s own operators panic on overflow in debug builds and wrap in release
+//! builds (`I32F32::from_num(50_000)²` panics in one and gives −1.79e9 in the
+//! other), which would break the promise that both builds behave the same. The
+//! newtype's `+ − * /`, unary `−` and their `*=` forms therefore saturate: a
+//! result beyond the range is [`Scalar::MAX`] or [`Scalar::MIN`], by the sign of
+//! the exact result, in every build. Engine code and game code write plain
+//! arithmetic (`a * b + c`) and get the same bits everywhere.
+//!
+//! * `a / 0` is [`Scalar::MAX`] for `a > 0`, [`Scalar::MIN`] for `a < 0` and 0
+//!   for `a = 0` (the saturated limit). Where a zero divisor means "no effect",
+//!   as for inverse masses, [`Scalar::recip`] and [`Scalar::div_or_zero`] give 0.
+//! * `-Scalar::MIN` is [`Scalar::MAX`]; `Scalar::MIN.abs()` likewise.
+//! * [`Scalar::sqrt`] of a negative number is 0.
+//! * `checked_*` methods return `None` instead of saturating, for callers that
+//!   must tell.
+//!
+//! Floats appear only at the API edge: `TryFrom<f32>`/`TryFrom<f64>` (NaN,
+//! infinity and out-of-range values are errors), [`Scalar::to_f32`] and
+//! [`Scalar::to_f64`]. The step never calls them.
 
-/// The fixed-point number type used for every physical quantity (Q32.32).
-pub type Scalar = fixed::types::I32F32;
+use core::fmt;
+use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
+use fixed::traits::{FromFixed, ToFixed};
+use fixed::types::I32F32;
+
+/// The fixed-point number of every physical quantity (Q32.32), with saturating
+/// operators (see the [module docs](self)).
+///
+/// The bits are those of `fixed::types::I32F32`: [`Scalar::to_bits`] and
+/// [`Scalar::from_bits`] convert exactly, and snapshots store them.
+#[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[repr(transparent)]
+pub struct Scalar(I32F32);
 
 /// 0.
 pub const ZERO: Scalar = Scalar::ZERO;
@@ -23,7 +47,7 @@ pub const ONE: Scalar = Scalar::ONE;
 /// 0.5.
 pub const HALF: Scalar = Scalar::lit("0.5");
 /// 2.
-pub const TWO: Scalar = Scalar::const_from_int(2);
+pub const TWO: Scalar = Scalar::from_int(2);
 /// π, rounded toward zero to Q32.32 (0.52 ulp below π; the `fixed` crate's
 /// constant). `atan2` never returns more than this.
 pub const PI: Scalar = Scalar::PI;
@@ -38,61 +62,487 @@ pub const EPSILON: Scalar = Scalar::DELTA;
 #[inline]
 #[must_use]
 pub const fn from_int(v: i32) -> Scalar {
-    Scalar::const_from_int(v as i64)
+    Scalar::from_int(v)
 }
 
-/// Fast saturating arithmetic on [`Scalar`], used on the step's hot paths.
-///
-/// `fixed`'s `saturating_mul` is correct but generic and about twice as slow as
-/// needed here; [`ScalarExt::sat_mul`] computes the same bits (the full 128-bit
-/// product, shifted right by 32 with floor rounding, clamped to the range), which
-/// a test checks against `fixed` over random and extreme inputs.
-pub trait ScalarExt: Sized {
-    /// `self · rhs`, saturating, bit-identical to `Scalar::saturating_mul`.
-    #[must_use]
-    fn sat_mul(self, rhs: Self) -> Self;
-    /// `self + rhs`, saturating, bit-identical to `Scalar::saturating_add`.
-    #[must_use]
-    fn sat_add(self, rhs: Self) -> Self;
-    /// `self − rhs`, saturating, bit-identical to `Scalar::saturating_sub`.
-    #[must_use]
-    fn sat_sub(self, rhs: Self) -> Self;
-}
+impl Scalar {
+    /// 0.
+    pub const ZERO: Self = Self(I32F32::ZERO);
+    /// 1.
+    pub const ONE: Self = Self(I32F32::ONE);
+    /// −1.
+    pub const NEG_ONE: Self = Self(I32F32::NEG_ONE);
+    /// 0.5.
+    pub const HALF: Self = Self::lit("0.5");
+    /// The largest value, 2^31 − 2^-32.
+    pub const MAX: Self = Self(I32F32::MAX);
+    /// The smallest (most negative) value, −2^31.
+    pub const MIN: Self = Self(I32F32::MIN);
+    /// The smallest positive value, 2^-32 (one unit in the last place).
+    pub const DELTA: Self = Self(I32F32::DELTA);
+    /// π (rounded toward zero, as `fixed` rounds its constants).
+    pub const PI: Self = Self(I32F32::PI);
+    /// 2π.
+    pub const TAU: Self = Self(I32F32::TAU);
+    /// π/2.
+    pub const FRAC_PI_2: Self = Self(I32F32::FRAC_PI_2);
+    /// π/3.
+    pub const FRAC_PI_3: Self = Self(I32F32::FRAC_PI_3);
+    /// π/4.
+    pub const FRAC_PI_4: Self = Self(I32F32::FRAC_PI_4);
+    /// π/6.
+    pub const FRAC_PI_6: Self = Self(I32F32::FRAC_PI_6);
+    /// √2.
+    pub const SQRT_2: Self = Self(I32F32::SQRT_2);
+    /// 1/√2.
+    pub const FRAC_1_SQRT_2: Self = Self(I32F32::FRAC_1_SQRT_2);
 
-impl ScalarExt for Scalar {
+    /// The value whose Q32.32 bits are `bits` (exact).
     #[inline(always)]
-    fn sat_mul(self, rhs: Self) -> Self {
-        // |a·b| < 2^126: the i128 product cannot overflow. The result is bits
-        // 32..96 of the product (the shift floors, as `fixed` does); it fits when
-        // bits 95..128 are all equal, i.e. the high word lies in [−2³¹, 2³¹),
-        // tested as one add and one shift. That test is off the result's
-        // dependency chain and almost always true, so the clamp is a cold branch,
-        // not a `cmov` chain (about 40 % less latency per product in the solver).
-        let full = i128::from(self.to_bits()).wrapping_mul(i128::from(rhs.to_bits()));
-        let hi = (full >> 64) as i64;
-        if (hi as u64).wrapping_add(1 << 31) >> 32 == 0 {
-            Scalar::from_bits(middle_word(full as u64, hi))
+    #[must_use]
+    pub const fn from_bits(bits: i64) -> Self {
+        Self(I32F32::from_bits(bits))
+    }
+
+    /// The Q32.32 bits (exact): the value times 2^32.
+    #[inline(always)]
+    #[must_use]
+    pub const fn to_bits(self) -> i64 {
+        self.0.to_bits()
+    }
+
+    /// A whole number; exact, since every `i32` is in range. Usable in `const`.
+    #[inline]
+    #[must_use]
+    pub const fn from_int(v: i32) -> Self {
+        Self::from_bits((v as i64) << 32)
+    }
+
+    /// A decimal literal, rounded to the nearest Q32.32 value, usable in `const`
+    /// (`Scalar::lit("0.01")`). A malformed or out-of-range literal fails to
+    /// compile in a `const` and panics otherwise: it is for constants written in
+    /// the source, not for input.
+    #[inline]
+    #[must_use]
+    pub const fn lit(src: &str) -> Self {
+        Self(I32F32::lit(src))
+    }
+
+    /// Any number `fixed` can convert (integers, floats, other fixed-point
+    /// types), rounded to the nearest value and **saturated** to the range; NaN
+    /// gives 0. A convenience for literals in examples and tests; input from
+    /// outside should go through `Scalar::try_from` (an error for NaN, infinity
+    /// or out-of-range values).
+    #[inline]
+    #[must_use]
+    pub fn from_num<T: ToFixed + PartialOrd + Default + Copy>(v: T) -> Self {
+        match I32F32::checked_from_num(v) {
+            Some(x) => Self(x),
+            None if v > T::default() => Self::MAX,
+            None if v < T::default() => Self::MIN,
+            None => Self::ZERO,
+        }
+    }
+
+    /// Like [`Scalar::from_num`], but `None` when the value is NaN, infinite or
+    /// out of range.
+    #[inline]
+    #[must_use]
+    pub fn checked_from_num<T: ToFixed>(v: T) -> Option<Self> {
+        I32F32::checked_from_num(v).map(Self)
+    }
+
+    /// This value as any number type `fixed` converts to, saturating for integer
+    /// types too narrow for it. For output, never used by the step.
+    #[inline]
+    #[must_use]
+    pub fn to_num<T: FromFixed>(self) -> T {
+        self.0.saturating_to_num()
+    }
+
+    /// Conversion to `f64` for output (rendering, logging): exact. Never used by
+    /// the step.
+    #[inline]
+    #[must_use]
+    pub fn to_f64(self) -> f64 {
+        self.0.to_num::<f64>()
+    }
+
+    /// Conversion to `f32` for output, rounded to nearest. Never used by the step.
+    #[inline]
+    #[must_use]
+    pub fn to_f32(self) -> f32 {
+        self.0.to_num::<f32>()
+    }
+
+    /// |self|, saturating (`|MIN|` is `MAX`).
+    #[inline]
+    #[must_use]
+    pub const fn abs(self) -> Self {
+        Self(self.0.saturating_abs())
+    }
+
+    /// −1, 0 or 1 by the sign.
+    #[inline]
+    #[must_use]
+    pub const fn signum(self) -> Self {
+        Self(self.0.signum())
+    }
+
+    /// `true` when below zero.
+    #[inline]
+    #[must_use]
+    pub const fn is_negative(self) -> bool {
+        self.0.is_negative()
+    }
+
+    /// `true` when above zero.
+    #[inline]
+    #[must_use]
+    pub const fn is_positive(self) -> bool {
+        self.0.is_positive()
+    }
+
+    /// The square root, rounded down, with 0 for zero or negative input. Integer
+    /// operations only (`fixed`'s algorithm), so the same bits everywhere.
+    #[inline]
+    #[must_use]
+    pub fn sqrt(self) -> Self {
+        if self.0 <= I32F32::ZERO {
+            Self::ZERO
         } else {
-            saturated(hi)
+            Self(self.0.sqrt())
         }
     }
 
-    #[inline(always)]
-    fn sat_add(self, rhs: Self) -> Self {
-        // On overflow both operands have the sign of the exact sum.
-        match self.to_bits().overflowing_add(rhs.to_bits()) {
-            (r, false) => Scalar::from_bits(r),
-            (_, true) => saturated(self.to_bits()),
+    /// `1 / self`, saturating, with 0 for 0 (the convention for inverse masses
+    /// and inertias: an infinite mass has inverse 0).
+    #[inline]
+    #[must_use]
+    pub fn recip(self) -> Self {
+        Self::ONE.div_or_zero(self)
+    }
+
+    /// `self / rhs`, saturating, with 0 when `rhs` is 0: inside the step a zero
+    /// divisor means a degenerate configuration whose correct response is "no
+    /// impulse". The `/` operator saturates instead.
+    #[inline]
+    #[must_use]
+    pub fn div_or_zero(self, rhs: Self) -> Self {
+        if rhs.0 == I32F32::ZERO {
+            Self::ZERO
+        } else {
+            div_nonzero(self, rhs)
         }
     }
 
-    #[inline(always)]
-    fn sat_sub(self, rhs: Self) -> Self {
-        // On overflow the exact difference has the sign of `self`.
-        match self.to_bits().overflowing_sub(rhs.to_bits()) {
-            (r, false) => Scalar::from_bits(r),
-            (_, true) => saturated(self.to_bits()),
+    /// The smaller of the two.
+    #[inline]
+    #[must_use]
+    pub fn min(self, other: Self) -> Self {
+        if other < self {
+            other
+        } else {
+            self
         }
+    }
+
+    /// The larger of the two.
+    #[inline]
+    #[must_use]
+    pub fn max(self, other: Self) -> Self {
+        if other > self {
+            other
+        } else {
+            self
+        }
+    }
+
+    /// `self` clamped to `[lo, hi]`. Never panics: when `lo > hi` it returns
+    /// `hi` for values above `hi` and `lo` otherwise below `lo`, as the
+    /// comparisons fall.
+    #[inline]
+    #[must_use]
+    pub fn clamp(self, lo: Self, hi: Self) -> Self {
+        if self > hi {
+            hi
+        } else if self < lo {
+            lo
+        } else {
+            self
+        }
+    }
+
+    /// The largest whole number ≤ `self`.
+    #[inline]
+    #[must_use]
+    pub const fn floor(self) -> Self {
+        Self(self.0.floor())
+    }
+
+    /// The smallest whole number ≥ `self`, saturating.
+    #[inline]
+    #[must_use]
+    pub const fn ceil(self) -> Self {
+        Self(self.0.saturating_ceil())
+    }
+
+    /// The nearest whole number (ties away from zero), saturating.
+    #[inline]
+    #[must_use]
+    pub const fn round(self) -> Self {
+        Self(self.0.saturating_round())
+    }
+
+    /// The integer part, rounded toward zero.
+    #[inline]
+    #[must_use]
+    pub const fn int(self) -> Self {
+        Self(self.0.int())
+    }
+
+    /// The fractional part (`self − floor(self)`, in [0, 1)).
+    #[inline]
+    #[must_use]
+    pub const fn frac(self) -> Self {
+        Self(self.0.frac())
+    }
+
+    /// `self + rhs`, or `None` on overflow.
+    #[inline]
+    #[must_use]
+    pub const fn checked_add(self, rhs: Self) -> Option<Self> {
+        match self.0.checked_add(rhs.0) {
+            Some(v) => Some(Self(v)),
+            None => None,
+        }
+    }
+
+    /// `self − rhs`, or `None` on overflow.
+    #[inline]
+    #[must_use]
+    pub const fn checked_sub(self, rhs: Self) -> Option<Self> {
+        match self.0.checked_sub(rhs.0) {
+            Some(v) => Some(Self(v)),
+            None => None,
+        }
+    }
+
+    /// `self · rhs`, or `None` on overflow.
+    #[inline]
+    #[must_use]
+    pub fn checked_mul(self, rhs: Self) -> Option<Self> {
+        self.0.checked_mul(rhs.0).map(Self)
+    }
+
+    /// `self / rhs`, or `None` on overflow or division by zero.
+    #[inline]
+    #[must_use]
+    pub fn checked_div(self, rhs: Self) -> Option<Self> {
+        self.0.checked_div(rhs.0).map(Self)
+    }
+
+    /// `self · rhs` for an integer `rhs`, saturating.
+    #[inline]
+    #[must_use]
+    pub fn mul_int(self, rhs: i32) -> Self {
+        Self(self.0.saturating_mul_int(i64::from(rhs)))
+    }
+
+    /// `self / rhs` for an integer `rhs`, rounded toward zero; division by zero
+    /// saturates as the `/` operator does.
+    #[inline]
+    #[must_use]
+    pub fn div_int(self, rhs: i32) -> Self {
+        if rhs == 0 {
+            return saturated_by_sign(self.to_bits());
+        }
+        Self(self.0.saturating_div_int(i64::from(rhs)))
+    }
+}
+
+#[inline(always)]
+fn sat_mul(a: Scalar, b: Scalar) -> Scalar {
+    // |a·b| < 2^126: the i128 product cannot overflow. The result is bits
+    // 32..96 of the product (the shift floors, as `fixed` does); it fits when
+    // bits 95..128 are all equal, i.e. the high word lies in [−2³¹, 2³¹),
+    // tested as one add and one shift. That test is off the result's
+    // dependency chain and almost always true, so the clamp is a cold branch,
+    // not a `cmov` chain (about 40 % less latency per product in the solver).
+    let full = i128::from(a.to_bits()).wrapping_mul(i128::from(b.to_bits()));
+    let hi = (full >> 64) as i64;
+    if (hi as u64).wrapping_add(1 << 31) >> 32 == 0 {
+        Scalar::from_bits(middle_word(full as u64, hi))
+    } else {
+        saturated(hi)
+    }
+}
+
+#[inline(always)]
+fn sat_add(a: Scalar, b: Scalar) -> Scalar {
+    // On overflow both operands have the sign of the exact sum.
+    match a.to_bits().overflowing_add(b.to_bits()) {
+        (r, false) => Scalar::from_bits(r),
+        (_, true) => saturated(a.to_bits()),
+    }
+}
+
+#[inline(always)]
+fn sat_sub(a: Scalar, b: Scalar) -> Scalar {
+    // On overflow the exact difference has the sign of `a`.
+    match a.to_bits().overflowing_sub(b.to_bits()) {
+        (r, false) => Scalar::from_bits(r),
+        (_, true) => saturated(a.to_bits()),
+    }
+}
+
+impl Add for Scalar {
+    type Output = Self;
+    /// Saturating addition.
+    #[inline(always)]
+    fn add(self, rhs: Self) -> Self {
+        sat_add(self, rhs)
+    }
+}
+
+impl Sub for Scalar {
+    type Output = Self;
+    /// Saturating subtraction.
+    #[inline(always)]
+    fn sub(self, rhs: Self) -> Self {
+        sat_sub(self, rhs)
+    }
+}
+
+impl Mul for Scalar {
+    type Output = Self;
+    /// Saturating multiplication, rounded toward −∞ (as `fixed` rounds).
+    #[inline(always)]
+    fn mul(self, rhs: Self) -> Self {
+        sat_mul(self, rhs)
+    }
+}
+
+impl Div for Scalar {
+    type Output = Self;
+    /// Saturating division, truncated toward zero; `a / 0` saturates by the sign
+    /// of `a` (0 for `0 / 0`).
+    #[inline]
+    fn div(self, rhs: Self) -> Self {
+        if rhs.0 == I32F32::ZERO {
+            saturated_by_sign(self.to_bits())
+        } else {
+            div_nonzero(self, rhs)
+        }
+    }
+}
+
+impl Neg for Scalar {
+    type Output = Self;
+    /// Saturating negation (`-MIN` is `MAX`).
+    #[inline(always)]
+    fn neg(self) -> Self {
+        Self(self.0.saturating_neg())
+    }
+}
+
+impl Mul<i32> for Scalar {
+    type Output = Self;
+    /// Saturating multiplication by a whole number.
+    #[inline]
+    fn mul(self, rhs: i32) -> Self {
+        self.mul_int(rhs)
+    }
+}
+
+impl Mul<Scalar> for i32 {
+    type Output = Scalar;
+    /// Saturating multiplication by a whole number.
+    #[inline]
+    fn mul(self, rhs: Scalar) -> Scalar {
+        rhs.mul_int(self)
+    }
+}
+
+impl Div<i32> for Scalar {
+    type Output = Self;
+    /// Division by a whole number, truncated toward zero; by zero it saturates.
+    #[inline]
+    fn div(self, rhs: i32) -> Self {
+        self.div_int(rhs)
+    }
+}
+
+macro_rules! assign_ops {
+    ($($tr:ident $method:ident $op:tt $rhs:ty;)*) => {$(
+        impl $tr<$rhs> for Scalar {
+            #[inline(always)]
+            fn $method(&mut self, rhs: $rhs) {
+                *self = *self $op rhs;
+            }
+        }
+    )*};
+}
+
+assign_ops! {
+    AddAssign add_assign + Scalar;
+    SubAssign sub_assign - Scalar;
+    MulAssign mul_assign * Scalar;
+    DivAssign div_assign / Scalar;
+    MulAssign mul_assign * i32;
+    DivAssign div_assign / i32;
+}
+
+impl core::iter::Sum for Scalar {
+    /// Saturating sum, in iteration order.
+    fn sum<I: Iterator<Item = Self>>(iter: I) -> Self {
+        iter.fold(Self::ZERO, |a, b| a + b)
+    }
+}
+
+macro_rules! from_int_exact {
+    ($($t:ty),*) => {$(
+        impl From<$t> for Scalar {
+            /// Exact: every value of this integer type is in range.
+            #[inline]
+            fn from(v: $t) -> Self {
+                Self::from_int(i32::from(v))
+            }
+        }
+    )*};
+}
+
+from_int_exact!(i8, u8, i16, u16, i32);
+
+impl TryFrom<f64> for Scalar {
+    type Error = crate::Error;
+    /// Rounds to the nearest value; NaN, infinity or a value outside the range is
+    /// [`Error::NotFinite`](crate::Error::NotFinite).
+    fn try_from(v: f64) -> Result<Self, crate::Error> {
+        try_from_f64(v, "scalar")
+    }
+}
+
+impl TryFrom<f32> for Scalar {
+    type Error = crate::Error;
+    /// Rounds to the nearest value; NaN, infinity or a value outside the range is
+    /// [`Error::NotFinite`](crate::Error::NotFinite).
+    fn try_from(v: f32) -> Result<Self, crate::Error> {
+        try_from_f32(v, "scalar")
+    }
+}
+
+impl fmt::Display for Scalar {
+    /// The exact decimal value, as `fixed` prints it (precision flags honoured).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(&self.0, f)
+    }
+}
+
+impl fmt::Debug for Scalar {
+    /// The same as `Display`: the decimal value.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Debug::fmt(&self.0, f)
     }
 }
 
@@ -140,11 +590,19 @@ fn saturated(sign: i64) -> Scalar {
     }
 }
 
-/// `a / b`, saturating on overflow and returning 0 when `b` is 0.
-///
-/// Callers that need to tell a zero divisor apart check it themselves; inside the
-/// step a zero divisor means a degenerate configuration whose correct response is
-/// "no impulse", which 0 gives.
+/// The bound an operation clamps to for a result of the sign of `sign`; 0 for 0
+/// (`0 / 0`).
+#[cold]
+#[inline(never)]
+fn saturated_by_sign(sign: i64) -> Scalar {
+    match sign.signum() {
+        -1 => Scalar::MIN,
+        0 => Scalar::ZERO,
+        _ => Scalar::MAX,
+    }
+}
+
+/// `a / b` for `b ≠ 0`, saturating on overflow.
 ///
 /// Bit-identical to `fixed`'s `saturating_div` (the quotient of the 96-bit
 /// `a · 2³²` by `b`, truncated toward zero), which divides 128-bit integers in
@@ -154,11 +612,7 @@ fn saturated(sign: i64) -> Scalar {
 /// quotient at about half the cost; a test compares the two over random and
 /// extreme inputs.
 #[inline]
-#[must_use]
-pub fn div(a: Scalar, b: Scalar) -> Scalar {
-    if b == ZERO {
-        return ZERO;
-    }
+fn div_nonzero(a: Scalar, b: Scalar) -> Scalar {
     let (ua, ub) = (a.to_bits().unsigned_abs(), b.to_bits().unsigned_abs());
     let magnitude = if ua < 1 << 32 {
         (ua << 32) / ub
@@ -168,7 +622,7 @@ pub fn div(a: Scalar, b: Scalar) -> Scalar {
         let (q, r) = (u64::MAX / ub, u64::MAX % ub);
         q.saturating_add(u64::from(r == ub - 1))
     } else {
-        return a.saturating_div(b);
+        return Scalar(a.0.saturating_div(b.0));
     };
     let negative = (a < ZERO) != (b < ZERO);
     if negative {
@@ -179,38 +633,6 @@ pub fn div(a: Scalar, b: Scalar) -> Scalar {
         }
     } else {
         i64::try_from(magnitude).map_or(Scalar::MAX, Scalar::from_bits)
-    }
-}
-
-/// Square root, with 0 for zero or negative input. Deterministic: the `fixed`
-/// crate computes it with integer operations only.
-#[inline]
-#[must_use]
-pub fn sqrt(x: Scalar) -> Scalar {
-    if x <= ZERO {
-        ZERO
-    } else {
-        x.sqrt()
-    }
-}
-
-/// `1 / x`, saturating, with 0 for `x == 0` (the convention for inverse masses).
-#[inline]
-#[must_use]
-pub fn recip(x: Scalar) -> Scalar {
-    div(ONE, x)
-}
-
-/// `x` clamped to `[lo, hi]` (expects `lo <= hi`; returns `lo` otherwise).
-#[inline]
-#[must_use]
-pub fn clamp(x: Scalar, lo: Scalar, hi: Scalar) -> Scalar {
-    if x > hi {
-        hi
-    } else if x < lo {
-        lo
-    } else {
-        x
     }
 }
 
@@ -248,33 +670,63 @@ pub fn try_from_f32(v: f32, what: &'static str) -> Result<Scalar, crate::Error> 
     checked_from_f32(v).ok_or(crate::Error::NotFinite { what })
 }
 
-/// Conversion to `f64` for output (rendering, logging). Never used by the step.
-#[inline]
-#[must_use]
-pub fn to_f64(v: Scalar) -> f64 {
-    v.to_num::<f64>()
-}
-
-/// Conversion to `f32` for output (rendering, logging). Never used by the step.
-#[inline]
-#[must_use]
-pub fn to_f32(v: Scalar) -> f32 {
-    v.to_num::<f32>()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn div_by_zero_is_zero_and_overflow_saturates() {
-        assert_eq!(div(ONE, ZERO), ZERO);
-        assert_eq!(div(Scalar::MAX, EPSILON), Scalar::MAX);
-        assert_eq!(div(from_int(3), from_int(2)), Scalar::lit("1.5"));
+    fn division_by_zero_saturates_by_sign_and_div_or_zero_gives_zero() {
+        assert_eq!(ONE / ZERO, Scalar::MAX);
+        assert_eq!(-ONE / ZERO, Scalar::MIN);
+        assert_eq!(ZERO / ZERO, ZERO);
+        assert_eq!(ONE.div_or_zero(ZERO), ZERO);
+        assert_eq!(ZERO.recip(), ZERO);
+        assert_eq!(Scalar::MAX / EPSILON, Scalar::MAX);
+        assert_eq!(from_int(3) / from_int(2), Scalar::lit("1.5"));
+        assert_eq!(from_int(3) / 0, Scalar::MAX);
+        assert_eq!(from_int(-3) / 2, Scalar::lit("-1.5"));
     }
 
     #[test]
-    fn sat_mul_matches_fixed_bit_for_bit() {
+    fn operators_saturate_in_every_build() {
+        // The issue's measurement: 50,000² panics in debug and wraps in release
+        // with `fixed`'s operators; here it is MAX in both.
+        let big = Scalar::from_num(50_000);
+        assert_eq!(big * big, Scalar::MAX);
+        assert_eq!(-big * big, Scalar::MIN);
+        assert_eq!(Scalar::MAX + ONE, Scalar::MAX);
+        assert_eq!(Scalar::MIN - ONE, Scalar::MIN);
+        assert_eq!(-Scalar::MIN, Scalar::MAX);
+        assert_eq!(Scalar::MIN.abs(), Scalar::MAX);
+        assert_eq!(Scalar::MAX * 2, Scalar::MAX);
+        assert_eq!(2 * Scalar::MIN, Scalar::MIN);
+        let mut x = Scalar::MAX;
+        x += ONE;
+        x *= TWO;
+        assert_eq!(x, Scalar::MAX);
+    }
+
+    #[test]
+    fn conversions_at_the_edge() {
+        assert_eq!(Scalar::from(7i32), from_int(7));
+        assert_eq!(Scalar::from(i32::MIN), Scalar::MIN);
+        assert_eq!(Scalar::from(-3i16).to_bits(), -3 << 32);
+        assert_eq!(Scalar::try_from(0.25f64), Ok(Scalar::lit("0.25")));
+        assert_eq!(Scalar::try_from(0.25f32), Ok(Scalar::lit("0.25")));
+        assert!(Scalar::try_from(f64::NAN).is_err());
+        assert!(Scalar::try_from(f32::INFINITY).is_err());
+        assert!(Scalar::try_from(3e9f64).is_err());
+        assert_eq!(Scalar::from_num(3e9f64), Scalar::MAX);
+        assert_eq!(Scalar::from_num(-3e9f64), Scalar::MIN);
+        assert_eq!(Scalar::from_num(f64::NAN), ZERO);
+        assert_eq!(Scalar::lit("1.5").to_f64(), 1.5);
+        assert_eq!(Scalar::lit("-1.5").to_f32(), -1.5);
+        assert_eq!(Scalar::MAX.to_num::<i16>(), i16::MAX);
+        assert_eq!(from_int(5).clamp(from_int(7), from_int(6)), from_int(7));
+    }
+
+    #[test]
+    fn mul_matches_fixed_bit_for_bit() {
         let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
         let mut next = || {
             // xorshift64*: a deterministic spread over all bit patterns.
@@ -287,7 +739,7 @@ mod tests {
         for &a in &edges {
             for &b in &edges {
                 let (a, b) = (Scalar::from_bits(a), Scalar::from_bits(b));
-                assert_eq!(a.sat_mul(b), a.saturating_mul(b), "{a} {b}");
+                assert_eq!((a * b).0, a.0.saturating_mul(b.0), "{a} {b}");
             }
         }
         for _ in 0..200_000 {
@@ -295,7 +747,7 @@ mod tests {
             // Also small magnitudes, where real values live.
             for (a, b) in [(a, b), (a >> 24, b >> 24), (a >> 40, b >> 16)] {
                 let (a, b) = (Scalar::from_bits(a), Scalar::from_bits(b));
-                assert_eq!(a.sat_mul(b), a.saturating_mul(b), "{a} {b}");
+                assert_eq!((a * b).0, a.0.saturating_mul(b.0), "{a} {b}");
             }
         }
     }
@@ -317,7 +769,7 @@ mod tests {
     }
 
     #[test]
-    fn sat_add_and_sub_match_fixed_bit_for_bit() {
+    fn add_and_sub_match_fixed_bit_for_bit() {
         let edges = [0, 1, -1, 2, -2, i64::MAX, i64::MIN, i64::MAX - 1, i64::MIN + 1, 1 << 62, -(1 << 62)];
         let mut x: u64 = 0x2545_f491_4f6c_dd1d;
         // Fixed arrays, so the test runs in the no-allocator build too.
@@ -332,8 +784,8 @@ mod tests {
         for &a in vals() {
             for &b in vals().take(200) {
                 let (a, b) = (Scalar::from_bits(a), Scalar::from_bits(b));
-                assert_eq!(a.sat_add(b), a.saturating_add(b), "{a} + {b}");
-                assert_eq!(a.sat_sub(b), a.saturating_sub(b), "{a} - {b}");
+                assert_eq!((a + b).0, a.0.saturating_add(b.0), "{a} + {b}");
+                assert_eq!((a - b).0, a.0.saturating_sub(b.0), "{a} - {b}");
             }
         }
     }
@@ -372,15 +824,15 @@ mod tests {
         for &a in vals().chain(&[0]) {
             for &b in vals() {
                 let (a, b) = (Scalar::from_bits(a), Scalar::from_bits(b));
-                assert_eq!(div(a, b), a.saturating_div(b), "{a} / {b}");
+                assert_eq!((a / b).0, a.0.saturating_div(b.0), "{a} / {b}");
             }
         }
     }
 
     #[test]
     fn sqrt_of_negative_is_zero() {
-        assert_eq!(sqrt(from_int(-4)), ZERO);
-        assert_eq!(sqrt(from_int(9)), from_int(3));
+        assert_eq!(from_int(-4).sqrt(), ZERO);
+        assert_eq!(from_int(9).sqrt(), from_int(3));
     }
 
     #[test]

@@ -6,7 +6,6 @@
 //! design (world bounds, speed limits, validated sizes); saturation is the
 //! backstop, not the mechanism.
 
-use crate::math::scalar::ScalarExt as _;
 use core::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 
 use super::scalar::{self, Scalar, ZERO};
@@ -75,20 +74,20 @@ impl Vector2 {
     /// Conversion to floats for output (rendering, logging).
     #[must_use]
     pub fn to_f64(self) -> (f64, f64) {
-        (scalar::to_f64(self.x), scalar::to_f64(self.y))
+        (self.x.to_f64(), self.y.to_f64())
     }
 
     /// Conversion to `f32` floats for output (rendering, logging).
     #[must_use]
     pub fn to_f32(self) -> (f32, f32) {
-        (scalar::to_f32(self.x), scalar::to_f32(self.y))
+        (self.x.to_f32(), self.y.to_f32())
     }
 
     /// Dot product `a · b`.
     #[inline]
     #[must_use]
     pub fn dot(self, o: Self) -> Scalar {
-        self.x.sat_mul(o.x).sat_add(self.y.sat_mul(o.y))
+        self.x * o.x + self.y * o.y
     }
 
     /// 2D cross product of two vectors, `a × b = a.x·b.y − a.y·b.x` (a scalar: the z
@@ -96,14 +95,14 @@ impl Vector2 {
     #[inline]
     #[must_use]
     pub fn cross(self, o: Self) -> Scalar {
-        self.x.sat_mul(o.y).sat_sub(self.y.sat_mul(o.x))
+        self.x * o.y - self.y * o.x
     }
 
     /// Cross product of a vector and a scalar (z-axis), `v × s = (s·v.y, −s·v.x)`.
     #[inline]
     #[must_use]
     pub fn cross_vs(self, s: Scalar) -> Self {
-        Self { x: s.sat_mul(self.y), y: s.sat_mul(self.x).saturating_neg() }
+        Self { x: s * self.y, y: -(s * self.x) }
     }
 
     /// Cross product of a scalar (z-axis) and a vector, `s × v = (−s·v.y, s·v.x)`:
@@ -111,21 +110,21 @@ impl Vector2 {
     #[inline]
     #[must_use]
     pub fn cross_sv(s: Scalar, v: Self) -> Self {
-        Self { x: s.sat_mul(v.y).saturating_neg(), y: s.sat_mul(v.x) }
+        Self { x: -(s * v.y), y: s * v.x }
     }
 
     /// The vector rotated by +90°: `(−y, x)`.
     #[inline]
     #[must_use]
     pub fn perp(self) -> Self {
-        Self { x: self.y.saturating_neg(), y: self.x }
+        Self { x: -self.y, y: self.x }
     }
 
     /// The vector rotated by −90°: `(y, −x)`.
     #[inline]
     #[must_use]
     pub fn right_perp(self) -> Self {
-        Self { x: self.y, y: self.x.saturating_neg() }
+        Self { x: self.y, y: -self.x }
     }
 
     /// Squared length. Exact only while both components are below about 32,767;
@@ -171,7 +170,7 @@ impl Vector2 {
     #[must_use]
     pub fn length(self) -> Scalar {
         match self.rescaled() {
-            Some((v, shift)) => Self::unscale(scalar::sqrt(v.length_squared()), shift),
+            Some((v, shift)) => Self::unscale(v.length_squared().sqrt(), shift),
             None => ZERO,
         }
     }
@@ -184,8 +183,8 @@ impl Vector2 {
         let Some((v, shift)) = self.rescaled() else {
             return (Self::ZERO, ZERO);
         };
-        let len = scalar::sqrt(v.length_squared());
-        let n = Self::new(scalar::div(v.x, len), scalar::div(v.y, len));
+        let len = v.length_squared().sqrt();
+        let n = Self::new(v.x.div_or_zero(len), v.y.div_or_zero(len));
         (n, Self::unscale(len, shift))
     }
 
@@ -225,7 +224,7 @@ impl Vector2 {
     #[inline]
     #[must_use]
     pub fn abs(self) -> Self {
-        Self::new(self.x.saturating_abs(), self.y.saturating_abs())
+        Self::new(self.x.abs(), self.y.abs())
     }
 
     /// Linear interpolation `a + (b − a)·t`.
@@ -247,7 +246,7 @@ impl Add for Vector2 {
     type Output = Self;
     #[inline]
     fn add(self, o: Self) -> Self {
-        Self::new(self.x.sat_add(o.x), self.y.sat_add(o.y))
+        Self::new(self.x + o.x, self.y + o.y)
     }
 }
 
@@ -255,7 +254,7 @@ impl Sub for Vector2 {
     type Output = Self;
     #[inline]
     fn sub(self, o: Self) -> Self {
-        Self::new(self.x.sat_sub(o.x), self.y.sat_sub(o.y))
+        Self::new(self.x - o.x, self.y - o.y)
     }
 }
 
@@ -263,7 +262,7 @@ impl Neg for Vector2 {
     type Output = Self;
     #[inline]
     fn neg(self) -> Self {
-        Self::new(self.x.saturating_neg(), self.y.saturating_neg())
+        Self::new(-self.x, -self.y)
     }
 }
 
@@ -271,7 +270,7 @@ impl Mul<Scalar> for Vector2 {
     type Output = Self;
     #[inline]
     fn mul(self, s: Scalar) -> Self {
-        Self::new(self.x.sat_mul(s), self.y.sat_mul(s))
+        Self::new(self.x * s, self.y * s)
     }
 }
 

@@ -17,7 +17,7 @@ use crate::force::{
 use crate::geometry::circle::MAX_CIRCLE_RADIUS;
 use crate::geometry::mass::{MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};
 use crate::geometry::MassData;
-use crate::math::scalar::{self, Scalar, ScalarExt as _, ZERO};
+use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rect, Rot, Vector2};
 use crate::world::{compute_aabb, World, WorldDef, MAX_COORDINATE, MAX_FORCE_GENERATORS, MAX_FRICTION};
 
@@ -525,14 +525,14 @@ fn check_props(w: &World<'_>, p: &Props) -> Result<(), Error> {
 }
 
 fn check_motion(r: &BodyRecord) -> Result<(), Error> {
-    let far = MAX_COORDINATE.saturating_add(Scalar::const_from_int(4096));
+    let far = MAX_COORDINATE + Scalar::from_int(4096);
     let p = r.position;
-    if p.x.saturating_abs() > far || p.y.saturating_abs() > far {
+    if p.x.abs() > far || p.y.abs() > far {
         return Err(bad("position out of range"));
     }
     let q = r.rotation;
-    let norm = q.c.sat_mul(q.c).saturating_add(q.s.sat_mul(q.s));
-    if (norm.saturating_sub(scalar::ONE)).saturating_abs() > Scalar::lit("0.000001") {
+    let norm = (q.c * q.c) + (q.s * q.s);
+    if (norm - scalar::ONE).abs() > Scalar::lit("0.000001") {
         return Err(bad("rotation is not a unit rotation"));
     }
     // Speeds are not limited here: a game may set any velocity between steps,
@@ -762,9 +762,9 @@ pub(super) fn body_from(p: &Props, r: &BodyRecord) -> Body {
     b.body_type = p.body_type;
     b.mass = MassData {
         mass: p.mass,
-        inv_mass: scalar::recip(p.mass),
+        inv_mass: p.mass.recip(),
         inertia: p.inertia,
-        inv_inertia: scalar::recip(p.inertia),
+        inv_inertia: p.inertia.recip(),
     };
     b.friction = p.friction;
     b.restitution = p.restitution;

@@ -17,7 +17,6 @@
 
 use crate::arbiter::Arbiter;
 use crate::body::Body;
-use crate::math::scalar::ScalarExt as _;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rot, Vector2};
 
@@ -69,7 +68,7 @@ impl SolverBody {
             q: b.rotation,
             angle: ZERO,
             pending_v: b.pending_v * inv_n,
-            pending_w: b.pending_w.sat_mul(inv_n),
+            pending_w: b.pending_w * inv_n,
             forced: b.is_dynamic() && !b.out_of_bounds,
             moves: b.is_awake_mover(),
             dynamic: b.is_dynamic(),
@@ -291,26 +290,26 @@ pub(crate) fn prepare(
     let n0 = (b.position - a.position).dot(n);
     for ((cp, ci), src) in c.points_mut().zip(arb.points.iter()) {
         let (ra, rb) = (src.anchor_a, src.anchor_b);
-        cp.base_separation = src.separation.sat_sub(n0);
+        cp.base_separation = src.separation - n0;
         let k = mass_matrix(ma, mb, iia, iib, ra, rb, n);
         cp.normal_k = k;
-        cp.normal_mass = scalar::recip(k);
-        cp.tangent_mass = scalar::recip(mass_matrix(ma, mb, iia, iib, ra, rb, t));
+        cp.normal_mass = k.recip();
+        cp.tangent_mass = mass_matrix(ma, mb, iia, iib, ra, rb, t).recip();
         let dv = b.velocity_at_offset(rb) - a.velocity_at_offset(ra);
         cp.relative_velocity = dv.dot(n);
         cp.rn = [ra.cross(n), rb.cross(n)];
         cp.rt = [ra.cross(t), rb.cross(t)];
-        ci.irn = [iia.sat_mul(cp.rn[0]), iib.sat_mul(cp.rn[1])];
-        ci.irt = [iia.sat_mul(cp.rt[0]), iib.sat_mul(cp.rt[1])];
+        ci.irn = [iia * cp.rn[0], iib * cp.rn[1]];
+        ci.irt = [iia * cp.rt[0], iib * cp.rt[1]];
         ci.normal_impulse = src.normal_impulse;
         ci.tangent_impulse = src.tangent_impulse;
     }
     let ([p1, p2], [i1, _]) = (&c.points, &c.impulses);
-    c.k12 = ma.sat_add(mb).sat_add(i1.irn[0].sat_mul(p2.rn[0])).sat_add(i1.irn[1].sat_mul(p2.rn[1]));
+    c.k12 = ma + mb + i1.irn[0] * p2.rn[0] + i1.irn[1] * p2.rn[1];
     c.static_pair = ma == ZERO || mb == ZERO;
     if let Some(rigid) = block_inverse(c) {
         let ms = if c.static_pair { params.static_soft.mass_scale } else { params.soft.mass_scale };
-        let (u1, u2) = (p1.normal_mass.sat_mul(ms), p2.normal_mass.sat_mul(ms));
+        let (u1, u2) = (p1.normal_mass * ms, p2.normal_mass * ms);
         if let Some(soft) = inverse_from_diagonal_inverses(u1, u2, c.k12) {
             (c.block, c.soft_block, c.has_block) = (rigid, soft, true);
         }
@@ -327,7 +326,7 @@ fn store(c: &ContactConstraint, arb: &mut Arbiter) {
     for (dst, (cp, ci)) in arb.points.iter_mut().zip(c.points()) {
         dst.normal_impulse = ci.normal_impulse;
         dst.tangent_impulse = ci.tangent_impulse;
-        dst.total_normal_impulse = ci.total_normal_impulse.sat_add(ci.normal_impulse);
+        dst.total_normal_impulse = ci.total_normal_impulse + ci.normal_impulse;
         dst.max_normal_impulse = cp.max_normal_impulse;
     }
 }
@@ -445,17 +444,17 @@ fn warm_start_one(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverB
     for ci in c.impulses.iter_mut().take(count) {
         let (ln, lt) = (ci.normal_impulse, ci.tangent_impulse);
         if total {
-            ci.total_normal_impulse = ci.total_normal_impulse.sat_add(ln);
+            ci.total_normal_impulse += ln;
         }
-        sn = sn.sat_add(ln);
-        st = st.sat_add(lt);
-        wa = wa.sat_add(ci.irn[0].sat_mul(ln)).sat_add(ci.irt[0].sat_mul(lt));
-        wb = wb.sat_add(ci.irn[1].sat_mul(ln)).sat_add(ci.irt[1].sat_mul(lt));
+        sn += ln;
+        st += lt;
+        wa = wa + ci.irn[0] * ln + ci.irt[0] * lt;
+        wb = wb + ci.irn[1] * ln + ci.irt[1] * lt;
     }
     a.v -= c.n_m[0] * sn + c.t_m[0] * st;
-    a.w = a.w.sat_sub(wa);
+    a.w -= wa;
     b.v += c.n_m[1] * sn + c.t_m[1] * st;
-    b.w = b.w.sat_add(wb);
+    b.w += wb;
 }
 
 /// One sweep over every constraint, in pair order or in `reverse`.
@@ -509,13 +508,13 @@ fn restitute(
     let (n, n_m) = (c.normal, c.n_m);
     for _ in 0..RESTITUTION_ITERATIONS {
         for (cp, ci) in c.points_mut() {
-            if cp.relative_velocity > threshold.saturating_neg() || cp.max_normal_impulse == ZERO {
+            if cp.relative_velocity > -threshold || cp.max_normal_impulse == ZERO {
                 continue;
             }
             let vn = relative_speed(a, b, n, cp.rn);
-            let target = vn.sat_add(e.sat_mul(cp.relative_velocity));
-            let impulse = cp.normal_mass.sat_mul(target).saturating_neg();
-            let new = ci.normal_impulse.sat_add(impulse).max(ZERO);
+            let target = vn + e * cp.relative_velocity;
+            let impulse = -(cp.normal_mass * target);
+            let new = (ci.normal_impulse + impulse).max(ZERO);
             let applied = set_normal(cp, ci, new);
             apply_along(a, b, n_m, ci.irn, applied);
         }
@@ -535,7 +534,7 @@ fn mass_matrix(
     d: Vector2,
 ) -> Scalar {
     let (rda, rdb) = (ra.cross(d), rb.cross(d));
-    ma.sat_add(mb).sat_add(ia.sat_mul(rda.sat_mul(rda))).sat_add(ib.sat_mul(rdb.sat_mul(rdb)))
+    ma + mb + ia * (rda * rda) + ib * (rdb * rdb)
 }
 
 /// The inverse of the 2×2 normal mass matrix K of a two-point manifold, `[a, b, d]`
@@ -548,12 +547,12 @@ fn block_inverse(c: &ContactConstraint) -> Option<[Scalar; 3]> {
     }
     let [p1, p2] = &c.points;
     let (k11, k22, k12) = (p1.normal_k, p2.normal_k, c.k12);
-    let det = k11.sat_mul(k22).sat_sub(k12.sat_mul(k12));
-    if det <= ZERO || k11.sat_mul(k11) >= det.sat_mul(Scalar::const_from_int(1000)) {
+    let det = k11 * k22 - k12 * k12;
+    if det <= ZERO || k11 * k11 >= det * Scalar::from_int(1000) {
         return None;
     }
-    let inv = scalar::recip(det);
-    Some([k22.sat_mul(inv), k12.saturating_neg().sat_mul(inv), k11.sat_mul(inv)])
+    let inv = det.recip();
+    Some([k22 * inv, -k12 * inv, k11 * inv])
 }
 
 /// The inverse of the symmetric 2×2 matrix with diagonal entries 1/`u1`, 1/`u2`
@@ -562,14 +561,14 @@ fn block_inverse(c: &ContactConstraint) -> Option<[Scalar; 3]> {
 /// of two diagonal entries (which can be large for light bodies) is needed:
 /// K⁻¹ = 1/(1 − ρ) · [u1, −k12·u1·u2; −k12·u1·u2, u2] with ρ = k12²·u1·u2.
 fn inverse_from_diagonal_inverses(u1: Scalar, u2: Scalar, k12: Scalar) -> Option<[Scalar; 3]> {
-    let (a, b) = (k12.sat_mul(u1), k12.sat_mul(u2));
-    let rest = scalar::ONE.sat_sub(a.sat_mul(b));
+    let (a, b) = (k12 * u1, k12 * u2);
+    let rest = scalar::ONE - a * b;
     if rest <= ZERO {
         return None;
     }
-    let m = scalar::recip(rest);
-    let off = a.sat_mul(u2).sat_mul(m).saturating_neg();
-    Some([u1.sat_mul(m), off, u2.sat_mul(m)])
+    let m = rest.recip();
+    let off = -(a * u2 * m);
+    Some([u1 * m, off, u2 * m])
 }
 
 /// Solves both normal points of a two-point manifold together. A sequential
@@ -608,11 +607,7 @@ fn solve_block(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverBody
         (false, false) => c.block,
         (true, true) => c.soft_block,
         // One point soft, one speculative: rare, formed here.
-        _ => match inverse_from_diagonal_inverses(
-            p1.normal_mass.sat_mul(ms1),
-            p2.normal_mass.sat_mul(ms2),
-            c.k12,
-        ) {
+        _ => match inverse_from_diagonal_inverses(p1.normal_mass * ms1, p2.normal_mass * ms2, c.k12) {
             Some(inv) => inv,
             None => return false,
         },
@@ -620,26 +615,26 @@ fn solve_block(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverBody
     let (l1, l2) = (pi1.normal_impulse, pi2.normal_impulse);
     let (k11, k22, k12) = (p1.normal_k, p2.normal_k, c.k12);
     let dvn = (b.v - a.v).dot(n);
-    let v1 = dvn.sat_add(b.w.sat_mul(p1.rn[1])).sat_sub(a.w.sat_mul(p1.rn[0]));
-    let v2 = dvn.sat_add(b.w.sat_mul(p2.rn[1])).sat_sub(a.w.sat_mul(p2.rn[0]));
-    let q1 = v1.sat_add(bias1).sat_sub(k11.sat_mul(l1)).sat_sub(k12.sat_mul(l2));
-    let q2 = v2.sat_add(bias2).sat_sub(k12.sat_mul(l1)).sat_sub(k22.sat_mul(l2));
+    let v1 = dvn + b.w * p1.rn[1] - a.w * p1.rn[0];
+    let v2 = dvn + b.w * p2.rn[1] - a.w * p2.rn[0];
+    let q1 = v1 + bias1 - k11 * l1 - k12 * l2;
+    let q2 = v2 + bias2 - k12 * l1 - k22 * l2;
     let [i11, i12, i22] = inv;
     // Case 1: both push.
-    let x1 = i11.sat_mul(q1).sat_add(i12.sat_mul(q2)).saturating_neg();
-    let x2 = i12.sat_mul(q1).sat_add(i22.sat_mul(q2)).saturating_neg();
+    let x1 = -(i11 * q1 + i12 * q2);
+    let x2 = -(i12 * q1 + i22 * q2);
     let x = if x1 >= ZERO && x2 >= ZERO {
         Some((x1, x2))
     } else {
         // Case 2: only the first pushes; the second must not be approaching.
         // The diagonal entry is k₁₁/s_m.
-        let x1 = p1.normal_mass_div(q1).sat_mul(ms1);
-        if x1 >= ZERO && q2.sat_add(k12.sat_mul(x1)) >= ZERO {
+        let x1 = p1.normal_mass_div(q1) * ms1;
+        if x1 >= ZERO && q2 + k12 * x1 >= ZERO {
             Some((x1, ZERO))
         } else {
             // Case 3: only the second pushes.
-            let x2 = p2.normal_mass_div(q2).sat_mul(ms2);
-            if x2 >= ZERO && q1.sat_add(k12.sat_mul(x2)) >= ZERO {
+            let x2 = p2.normal_mass_div(q2) * ms2;
+            if x2 >= ZERO && q1 + k12 * x2 >= ZERO {
                 Some((ZERO, x2))
             } else if q1 >= ZERO && q2 >= ZERO {
                 // Case 4: neither pushes.
@@ -654,11 +649,11 @@ fn solve_block(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverBody
     let ([cp1, cp2], [ci1, ci2]) = (&mut c.points, &mut c.impulses);
     let d1 = accumulate_normal(cp1, ci1, v1, x1);
     let d2 = accumulate_normal(cp2, ci2, v2, x2);
-    let d = d1.sat_add(d2);
+    let d = d1 + d2;
     a.v -= c.n_m[0] * d;
-    a.w = a.w.sat_sub(ci1.irn[0].sat_mul(d1)).sat_sub(ci2.irn[0].sat_mul(d2));
+    a.w = a.w - ci1.irn[0] * d1 - ci2.irn[0] * d2;
     b.v += c.n_m[1] * d;
-    b.w = b.w.sat_add(ci1.irn[1].sat_mul(d1)).sat_add(ci2.irn[1].sat_mul(d2));
+    b.w = b.w + ci1.irn[1] * d1 + ci2.irn[1] * d2;
     true
 }
 
@@ -666,7 +661,7 @@ impl PointConstraint {
     /// −q / k for the point's diagonal entry k (0 when k is 0).
     #[inline(always)]
     fn normal_mass_div(&self, q: Scalar) -> Scalar {
-        scalar::div(q, self.normal_k).saturating_neg()
+        -q.div_or_zero(self.normal_k)
     }
 }
 
@@ -683,7 +678,7 @@ fn accumulate_normal(cp: &mut PointConstraint, ci: &mut PointImpulse, vn: Scalar
 /// a sweep or the restitution pass changes a normal impulse.
 #[inline(always)]
 fn set_normal(cp: &mut PointConstraint, ci: &mut PointImpulse, new: Scalar) -> Scalar {
-    let applied = new.sat_sub(ci.normal_impulse);
+    let applied = new - ci.normal_impulse;
     ci.normal_impulse = new;
     cp.max_normal_impulse = cp.max_normal_impulse.max(applied);
     applied
@@ -708,7 +703,7 @@ type Terms = (Scalar, Scalar, Scalar);
 /// precomputed arms: (vB − vA)·d + ωB·(rB × d) − ωA·(rA × d).
 #[inline(always)]
 fn relative_speed(a: &SolverBody, b: &SolverBody, d: Vector2, r: [Scalar; 2]) -> Scalar {
-    (b.v - a.v).dot(d).sat_add(b.w.sat_mul(r[1])).sat_sub(a.w.sat_mul(r[0]))
+    (b.v - a.v).dot(d) + b.w * r[1] - a.w * r[0]
 }
 
 /// Applies an impulse of magnitude `lambda` along the direction whose
@@ -716,9 +711,9 @@ fn relative_speed(a: &SolverBody, b: &SolverBody, d: Vector2, r: [Scalar; 2]) ->
 #[inline(always)]
 fn apply_along(a: &mut SolverBody, b: &mut SolverBody, m: [Vector2; 2], ir: [Scalar; 2], lambda: Scalar) {
     a.v -= m[0] * lambda;
-    a.w = a.w.sat_sub(ir[0].sat_mul(lambda));
+    a.w -= ir[0] * lambda;
     b.v += m[1] * lambda;
-    b.w = b.w.sat_add(ir[1].sat_mul(lambda));
+    b.w += ir[1] * lambda;
 }
 
 /// One pass over one constraint: normal points, then friction.
@@ -744,16 +739,12 @@ fn solve_one(
     let dpn = (b.p - a.p).dot(n);
     let mut terms: [Terms; 2] = [(ZERO, scalar::ONE, ZERO); 2];
     for (term, (cp, _)) in terms.iter_mut().zip(c.points()) {
-        let s = cp
-            .base_separation
-            .sat_add(dpn)
-            .sat_add(b.angle.sat_mul(cp.rn[1]))
-            .sat_sub(a.angle.sat_mul(cp.rn[0]));
+        let s = cp.base_separation + dpn + b.angle * cp.rn[1] - a.angle * cp.rn[0];
         *term = if s > ZERO {
             // Speculative: allow closing the gap within this sub-step, no more.
-            (s.sat_mul(params.inv_h), scalar::ONE, ZERO)
+            (s * params.inv_h, scalar::ONE, ZERO)
         } else if use_bias {
-            let push = s.sat_mul(soft.bias_rate).max(params.push_speed.saturating_neg());
+            let push = (s * soft.bias_rate).max(-params.push_speed);
             (push, soft.mass_scale, soft.impulse_scale)
         } else {
             (ZERO, scalar::ONE, ZERO)
@@ -773,13 +764,8 @@ fn solve_one(
                 continue;
             };
             let vn = relative_speed(a, b, n, cp.rn);
-            let impulse = cp
-                .normal_mass
-                .sat_mul(mass_scale)
-                .sat_mul(vn.sat_add(bias))
-                .saturating_neg()
-                .sat_sub(impulse_scale.sat_mul(ci.normal_impulse));
-            let new = ci.normal_impulse.sat_add(impulse).max(ZERO);
+            let impulse = -(cp.normal_mass * mass_scale * (vn + bias)) - impulse_scale * ci.normal_impulse;
+            let new = (ci.normal_impulse + impulse).max(ZERO);
             let applied = accumulate_normal(cp, ci, vn, new);
             apply_along(a, b, n_m, ci.irn, applied);
         }
@@ -788,10 +774,10 @@ fn solve_one(
     let (mu, t_m) = (c.friction, c.t_m);
     for (cp, ci) in c.points_mut() {
         let vt = relative_speed(a, b, t, cp.rt);
-        let impulse = cp.tangent_mass.sat_mul(vt).saturating_neg();
-        let max_f = mu.sat_mul(ci.normal_impulse);
-        let new = scalar::clamp(ci.tangent_impulse.sat_add(impulse), max_f.saturating_neg(), max_f);
-        let applied = new.sat_sub(ci.tangent_impulse);
+        let impulse = -(cp.tangent_mass * vt);
+        let max_f = mu * ci.normal_impulse;
+        let new = (ci.tangent_impulse + impulse).clamp(-max_f, max_f);
+        let applied = new - ci.tangent_impulse;
         ci.tangent_impulse = new;
         apply_along(a, b, t_m, ci.irt, applied);
     }

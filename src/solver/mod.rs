@@ -61,7 +61,6 @@ use contact::StepParams;
 use managed::ManagedSlice;
 
 use crate::constraint::Joint;
-use crate::math::scalar::ScalarExt as _;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::Vector2;
 use crate::world::World;
@@ -100,11 +99,11 @@ impl Softness {
         if hertz == ZERO {
             return Self { bias_rate: ZERO, mass_scale: scalar::ONE, impulse_scale: ZERO };
         }
-        let omega = scalar::TAU.sat_mul(hertz);
-        let a1 = zeta.sat_mul(scalar::TWO).saturating_add(h.sat_mul(omega));
-        let a2 = h.sat_mul(omega).sat_mul(a1);
-        let a3 = scalar::recip(scalar::ONE.saturating_add(a2));
-        Self { bias_rate: scalar::div(omega, a1), mass_scale: a2.sat_mul(a3), impulse_scale: a3 }
+        let omega = scalar::TAU * hertz;
+        let a1 = (zeta * scalar::TWO) + (h * omega);
+        let a2 = h * omega * a1;
+        let a3 = (scalar::ONE + a2).recip();
+        Self { bias_rate: omega.div_or_zero(a1), mass_scale: a2 * a3, impulse_scale: a3 }
     }
 }
 
@@ -112,16 +111,16 @@ impl World<'_> {
     /// Solves the contacts and advances positions for a step of `dt`.
     pub(crate) fn solve_and_integrate(&mut self, dt: Scalar) {
         let n = self.def.substeps.max(1);
-        let inv_n = scalar::recip(Scalar::from_num(n));
-        let h = dt.sat_mul(inv_n);
-        let inv_h = scalar::recip(h);
+        let inv_n = Scalar::from_num(n).recip();
+        let h = dt * inv_n;
+        let inv_h = h.recip();
         // Box2D caps the contact stiffness at a quarter of the sub-step rate.
-        let hertz = self.def.contact_hertz.min(inv_h.sat_mul(Scalar::lit("0.25")));
+        let hertz = self.def.contact_hertz.min(inv_h * Scalar::lit("0.25"));
         let zeta = self.def.contact_damping_ratio;
         let params = StepParams {
             inv_h,
             soft: Softness::new(hertz, zeta, h),
-            static_soft: Softness::new(hertz.sat_mul(scalar::TWO), zeta, h),
+            static_soft: Softness::new(hertz * scalar::TWO, zeta, h),
             push_speed: self.def.contact_push_speed,
         };
         self.load_solver(inv_n, &params);
@@ -136,7 +135,7 @@ impl World<'_> {
             let (bodies, _) = self.solver.split();
             for sb in bodies.iter_mut().filter(|sb| sb.forced) {
                 sb.v += sb.pending_v;
-                sb.w = sb.w.saturating_add(sb.pending_w);
+                sb.w += sb.pending_w;
             }
             self.for_each_joint(|j, a, b| j.warm_start(a, b));
             let (bodies, constraints) = self.solver.split();
@@ -151,11 +150,11 @@ impl World<'_> {
                 // Component clamps are cheap and bound the displacement; the
                 // exact speed limit is applied once at the end of the step.
                 let v = sb.v;
-                sb.v = Vector2::new(scalar::clamp(v.x, -vmax, vmax), scalar::clamp(v.y, -vmax, vmax));
-                sb.w = scalar::clamp(sb.w, -wmax, wmax);
+                sb.v = Vector2::new(v.x.clamp(-vmax, vmax), v.y.clamp(-vmax, vmax));
+                sb.w = sb.w.clamp(-wmax, wmax);
                 sb.p += sb.v * h;
-                let turn = sb.w.sat_mul(h);
-                sb.angle = sb.angle.sat_add(turn);
+                let turn = sb.w * h;
+                sb.angle += turn;
                 sb.q = sb.q.integrate(turn);
             }
             // Relax: one sweep in the sub-step's direction; the last sub-step
@@ -310,7 +309,7 @@ impl World<'_> {
     /// The angular speed limit for a step: the configured one, and at most a
     /// quarter turn per step.
     pub(crate) fn angular_limit(&self, dt: Scalar) -> Scalar {
-        let quarter_turn = scalar::div(scalar::FRAC_PI_2.sat_mul(scalar::HALF), dt);
+        let quarter_turn = (scalar::FRAC_PI_2 * scalar::HALF).div_or_zero(dt);
         self.def.max_angular_speed.min(quarter_turn)
     }
 }
