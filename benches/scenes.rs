@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use arphysics::{
     Arbiter, Body, BodyDef, Capacities, GravityForceGenerator, JointDef, JointKind, PathHandle, PolygonPath,
-    Rect, Scalar, Slot, Vector2, World, WorldDef,
+    Rect, Scalar, Slot, Storage, Vector2, World, WorldDef,
 };
 
 type Build = fn() -> Result<World<'static>, arphysics::Error>;
@@ -184,26 +184,17 @@ fn main() -> Result<(), arphysics::Error> {
             times[times.len() - 1],
         );
     }
-    // Storage per body slot: the slot, its broad-phase proxy and body index, the
-    // sweep order entry and the solver's copy; per contact slot: two arbiter
-    // buffers, the candidate pair and the solver's constraint.
-    let per_body = std::mem::size_of::<Slot<Body>>()
-        + std::mem::size_of::<arphysics::Proxy>()
-        + 4
-        + 4
-        + std::mem::size_of::<arphysics::SolverBody>();
-    let per_contact = 2 * std::mem::size_of::<Arbiter>()
-        + std::mem::size_of::<(u32, u32)>()
-        + std::mem::size_of::<arphysics::ContactConstraint>();
+    // Storage per body slot (the body, its broad-phase entries and the solver's
+    // copy) and per contact slot (two arbiter buffers, the candidate pair and
+    // the solver's constraint), as the world reports it.
+    let (per_body, per_contact) = (Storage::BYTES_PER_BODY, Storage::BYTES_PER_CONTACT);
+    let large = Capacities { bodies: 5100, paths: 0, contacts: 20400, joints: 0 };
     println!(
-        "memory: {per_body} bytes per body slot (body {}, solver {}), {per_contact} per contact slot \
-         (arbiter {} twice, solver constraint {}); large_pyramid's capacities (5,100 bodies, \
-         20,400 contacts): {:.1} MiB",
+        "memory: {per_body} bytes per body slot (body {}), {per_contact} per contact slot \
+         (arbiter {} twice); large_pyramid's capacities (5,100 bodies, 20,400 contacts): {:.1} MiB",
         std::mem::size_of::<Slot<Body>>(),
-        std::mem::size_of::<arphysics::SolverBody>(),
         std::mem::size_of::<Arbiter>(),
-        std::mem::size_of::<arphysics::ContactConstraint>(),
-        (5100 * per_body + 20400 * per_contact) as f64 / (1024.0 * 1024.0)
+        large.storage_bytes() as f64 / (1024.0 * 1024.0)
     );
     Ok(())
 }

@@ -19,9 +19,11 @@
 //!   impulses; then it is dropped.
 //!
 //! "Touching" means the narrow phase found at least one contact point within the
-//! speculative margin ([`SPECULATIVE_DISTANCE`](crate::world::SPECULATIVE_DISTANCE)).
+//! speculative margin ([`SPECULATIVE_DISTANCE`](crate::limits::SPECULATIVE_DISTANCE)).
 //!
 //! [`WorldDef::arbiter_persistence`]: crate::WorldDef::arbiter_persistence
+
+use managed::ManagedSlice;
 
 use crate::body::BodyHandle;
 use crate::math::scalar::{self, Scalar, ZERO};
@@ -270,4 +272,90 @@ pub fn mix_friction(a: Scalar, b: Scalar) -> Scalar {
 #[must_use]
 pub fn mix_restitution(a: Scalar, b: Scalar) -> Scalar {
     a.max(b)
+}
+
+/// The world's arbiters: the live ones, sorted by pair key, in one buffer, and a
+/// second buffer of the same length that the next step's merge writes into
+/// before the two swap (so a step never copies the array back).
+pub(crate) struct ArbiterStore<'a> {
+    live: ManagedSlice<'a, Arbiter>,
+    next: ManagedSlice<'a, Arbiter>,
+    count: usize,
+}
+
+impl<'a> ArbiterStore<'a> {
+    /// An empty store on two buffers of equal length.
+    pub(crate) fn new(live: ManagedSlice<'a, Arbiter>, next: ManagedSlice<'a, Arbiter>) -> Self {
+        Self { live, next, count: 0 }
+    }
+
+    /// How many arbiters fit.
+    pub(crate) fn capacity(&self) -> usize {
+        self.live.len().min(self.next.len())
+    }
+
+    /// How many are live.
+    pub(crate) fn len(&self) -> usize {
+        self.count
+    }
+
+    /// The live arbiters, in key order.
+    pub(crate) fn live(&self) -> &[Arbiter] {
+        self.live.get(..self.count).unwrap_or(&[])
+    }
+
+    /// The live arbiters, in key order, to update in place.
+    pub(crate) fn live_mut(&mut self) -> &mut [Arbiter] {
+        let n = self.count;
+        self.live.get_mut(..n).unwrap_or(&mut [])
+    }
+
+    /// The live arbiters and the buffer the next set is written into.
+    pub(crate) fn live_and_next(&mut self) -> (&[Arbiter], &mut [Arbiter]) {
+        let n = self.count;
+        (self.live.get(..n).unwrap_or(&[]), &mut self.next)
+    }
+
+    /// Makes the first `count` arbiters written into the next buffer the live set.
+    pub(crate) fn swap_in_next(&mut self, count: usize) {
+        core::mem::swap(&mut self.live, &mut self.next);
+        self.count = count.min(self.live.len());
+    }
+
+    /// Keeps the live arbiters for which `keep` returns true, in order.
+    pub(crate) fn retain(&mut self, mut keep: impl FnMut(&Arbiter) -> bool) {
+        let mut out = 0usize;
+        for k in 0..self.count {
+            let Some(arb) = self.live.get(k).copied() else { break };
+            if !keep(&arb) {
+                continue;
+            }
+            if let Some(slot) = self.live.get_mut(out) {
+                *slot = arb;
+            }
+            out = out.saturating_add(1);
+        }
+        self.count = out;
+    }
+
+    /// Empties the live set (a restore refills it with [`ArbiterStore::push`]).
+    pub(crate) fn clear(&mut self) {
+        self.count = 0;
+    }
+
+    /// Appends an arbiter to the live set, which must stay in key order (a
+    /// restore checks that first); false, changing nothing, when full.
+    pub(crate) fn push(&mut self, arb: Arbiter) -> bool {
+        if self.count >= self.capacity() {
+            return false;
+        }
+        match self.live.get_mut(self.count) {
+            Some(slot) => {
+                *slot = arb;
+                self.count = self.count.saturating_add(1);
+                true
+            }
+            None => false,
+        }
+    }
 }

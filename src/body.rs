@@ -8,7 +8,7 @@
 //!
 //! [`PolygonPath`]: crate::geometry::PolygonPath
 
-use crate::arena::Handle;
+use crate::arena::{Arena, Handle};
 use crate::geometry::{MassData, PolygonPath};
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rect, Rot, Transform, Vector2};
@@ -265,9 +265,9 @@ pub struct Body {
     pub(crate) aabb: Rect,
     /// Velocity change from the force generators, spread over the sub-steps
     /// (transient: zero outside `step`).
-    pub(crate) pending_v: Vector2,
+    pub(crate) force_dv: Vector2,
     /// Angular velocity change from the force generators (transient).
-    pub(crate) pending_w: Scalar,
+    pub(crate) force_dw: Scalar,
 }
 
 impl Body {
@@ -290,8 +290,8 @@ impl Body {
             out_of_bounds: false,
             radius: ZERO,
             aabb: Rect { min: Vector2::ZERO, max: Vector2::ZERO },
-            pending_v: Vector2::ZERO,
-            pending_w: ZERO,
+            force_dv: Vector2::ZERO,
+            force_dw: ZERO,
         }
     }
 
@@ -478,21 +478,21 @@ impl Body {
 
     /// True when the step moves this body (dynamic or kinematic, inside the bounds).
     #[inline]
-    pub(crate) fn is_awake_mover(&self) -> bool {
+    pub(crate) fn moved_by_step(&self) -> bool {
         self.body_type != BodyType::Static && !self.out_of_bounds
     }
 
     /// Sets the linear velocity (m/s). Ignored for static and frozen bodies; the
     /// step clamps it to the world's speed limit.
     pub fn set_linear_velocity(&mut self, v: Vector2) {
-        if self.is_awake_mover() {
+        if self.moved_by_step() {
             self.linear_velocity = v;
         }
     }
 
     /// Sets the angular velocity (rad/s). Ignored for static and frozen bodies.
     pub fn set_angular_velocity(&mut self, w: Scalar) {
-        if self.is_awake_mover() {
+        if self.moved_by_step() {
             self.angular_velocity = w;
         }
     }
@@ -528,5 +528,21 @@ impl Body {
         if self.is_dynamic() && !self.out_of_bounds {
             self.linear_velocity += dv;
         }
+    }
+}
+
+/// The world bounding box of a body at its current transform.
+pub(crate) fn compute_aabb(b: &Body, paths: &Arena<'_, PolygonPath>) -> Rect {
+    match b.shape {
+        Shape::Circle { radius } => Rect::from_center(b.position, Vector2::new(radius, radius)),
+        Shape::Polygon(h) => match paths.get(h) {
+            Some(p) => {
+                let xf = b.transform();
+                let mut it = p.vertices().iter().map(|v| xf.apply(*v));
+                let first = it.next().unwrap_or(b.position);
+                it.fold(Rect { min: first, max: first }, |r, v| Rect { min: r.min.min(v), max: r.max.max(v) })
+            }
+            None => Rect::from_center(b.position, Vector2::new(b.radius, b.radius)),
+        },
     }
 }

@@ -10,16 +10,18 @@
 
 use managed::{Managed, ManagedSlice};
 
-use crate::arbiter::{mix_friction, mix_restitution, Arbiter, ArbiterState};
+use crate::arbiter::{mix_friction, mix_restitution, Arbiter, ArbiterState, ArbiterStore};
 use crate::arena::Arena;
 use crate::body::{Body, BodyType, Shape};
 use crate::collide::{collide_circles, collide_polygon_circle, collide_polygons, Manifold};
+use crate::constraint::{Joint, JointMarker};
 use crate::error::Error;
 use crate::geometry::PolygonPath;
-use crate::handler::{CallbackContext, HandlerTable};
+use crate::handler::{CallbackContext, HandlerTable, PostStepQueue};
 use crate::index::{BruteForceIndex, PairSink, Proxy, SortAndSweepIndex, SpatialIndex, AUTO_THRESHOLD};
+use crate::limits::SPECULATIVE_DISTANCE;
 use crate::math::Scalar;
-use crate::world::{World, SPECULATIVE_DISTANCE};
+use crate::step::StepContext;
 
 /// The broad phase a world uses.
 #[derive(Default)]
@@ -50,27 +52,26 @@ impl<'a> Index<'a> {
     }
 }
 
-/// Scratch and persistent buffers of the collision stage.
-pub(crate) struct Contacts<'a> {
+/// The broad phase's index and scratch: rebuilt every step, never state.
+pub(crate) struct BroadPhase<'a> {
+    /// The index the game chose.
+    pub(crate) index: Index<'a>,
+    /// The automatic index's sort-and-sweep, on scratch from the world's storage.
+    pub(crate) auto_sweep: SortAndSweepIndex<'a>,
+    /// One proxy per body inside the bounds, in slot order.
     pub(crate) proxies: ManagedSlice<'a, Proxy>,
+    /// The body slot of each proxy.
     pub(crate) proxy_bodies: ManagedSlice<'a, u32>,
+    /// Candidate pairs of body slots, sorted and deduplicated.
     pub(crate) pairs: ManagedSlice<'a, (u32, u32)>,
-    pub(crate) arbiters: ManagedSlice<'a, Arbiter>,
-    pub(crate) next: ManagedSlice<'a, Arbiter>,
-    pub(crate) arbiter_count: usize,
     /// Sorted body-slot pairs held by joints whose bodies must not collide.
     pub(crate) joint_pairs: ManagedSlice<'a, (u32, u32)>,
 }
 
-impl Contacts<'_> {
-    /// The live arbiters, in key order.
-    pub(crate) fn live(&self) -> &[Arbiter] {
-        self.arbiters.get(..self.arbiter_count).unwrap_or(&[])
-    }
-
-    pub(crate) fn live_mut(&mut self) -> &mut [Arbiter] {
-        let n = self.arbiter_count;
-        self.arbiters.get_mut(..n).unwrap_or(&mut [])
+impl BroadPhase<'_> {
+    /// The first `n` candidate pairs (as left by [`broad_phase`]).
+    pub(crate) fn candidates(&self, n: usize) -> &[(u32, u32)] {
+        self.pairs.get(..n.min(self.pairs.len())).unwrap_or(&[])
     }
 }
 
@@ -81,197 +82,203 @@ pub(crate) fn should_collide(a: &Body, b: &Body) -> bool {
         && (a.collision_groups & b.collision_groups) == 0
 }
 
-impl World<'_> {
-    /// Builds the proxies, runs the index, and leaves the sorted, deduplicated,
-    /// filtered candidate pairs (as body slot pairs) in `pairs[..n]`. Changes no
-    /// simulation state.
-    ///
-    /// # Errors
-    /// [`Error::CapacityFull`] when the bodies do not fit the proxy buffer or the
-    /// pairs do not fit the contact buffer, or the merged arbiters would not fit.
-    pub(crate) fn broad_phase(&mut self, dt: Scalar) -> Result<usize, Error> {
-        let (vmax, wmax) = (self.def.max_linear_speed, self.angular_limit(dt));
-        // Pairs held together by a joint that does not let them collide, sorted.
-        let mut held = 0usize;
-        for (_, j) in self.joints.iter() {
-            let Some(b) = j.def.body_b else { continue };
-            if j.def.collide_connected {
-                continue;
-            }
-            let (x, y) = (j.def.body_a.index(), b.index());
-            if let Some(slot) = self.contacts.joint_pairs.get_mut(held) {
-                *slot = (x.min(y), x.max(y));
-                held = held.saturating_add(1);
-            }
+/// The broad phase: builds the proxies, runs the index, and leaves the sorted,
+/// deduplicated, filtered candidate pairs (as body slot pairs) in
+/// `bp.pairs[..n]`; returns `n`. Changes no simulation state.
+///
+/// # Errors
+/// [`Error::CapacityFull`] when the bodies do not fit the proxy buffer or the
+/// pairs do not fit the contact buffer, or the merged arbiters would not fit.
+pub(crate) fn broad_phase(
+    ctx: &StepContext,
+    bodies: &Arena<'_, Body>,
+    joints: &Arena<'_, Joint, JointMarker>,
+    bp: &mut BroadPhase<'_>,
+    arbiters: &ArbiterStore<'_>,
+) -> Result<usize, Error> {
+    // Pairs held together by a joint that does not let them collide, sorted.
+    let mut held = 0usize;
+    for (_, j) in joints.iter() {
+        let Some(b) = j.def.body_b else { continue };
+        if j.def.collide_connected {
+            continue;
         }
-        let held_pairs = self.contacts.joint_pairs.get_mut(..held).unwrap_or(&mut []);
-        held_pairs.sort_unstable();
-        let c = &mut self.contacts;
-        let mut n = 0usize;
-        for (h, b) in self.bodies.iter() {
-            if b.out_of_bounds {
-                continue;
-            }
-            let (Some(p), Some(pb)) = (c.proxies.get_mut(n), c.proxy_bodies.get_mut(n)) else {
-                return Err(Error::CapacityFull { what: "broad-phase proxy" });
-            };
-            let margin = SPECULATIVE_DISTANCE + sweep(b, dt, vmax, wmax);
-            *p = Proxy { aabb: b.aabb.expand(margin), is_static: b.body_type == BodyType::Static };
-            *pb = h.index();
-            n = n.saturating_add(1);
-        }
-        let proxies = c.proxies.get(..n).unwrap_or(&[]);
-        let mut sink = PairSink { pairs: &mut c.pairs, len: 0, overflowed: false };
-        match &mut self.index {
-            Index::Auto if n <= AUTO_THRESHOLD => BruteForceIndex.find_pairs(proxies, &mut sink),
-            Index::Auto => self.sweep.find_pairs(proxies, &mut sink),
-            Index::BruteForce(i) => i.find_pairs(proxies, &mut sink),
-            Index::SortAndSweep(i) => i.find_pairs(proxies, &mut sink),
-            Index::Custom(i) => i.find_pairs(proxies, &mut sink),
-        }
-        if sink.overflowed {
-            return Err(Error::CapacityFull { what: "contact pair" });
-        }
-        let reported = sink.len;
-        // Map proxy indices to body slots, dropping out-of-range reports and pairs
-        // the manual's filter rejects. Proxies are in slot order, so (i < j) maps to
-        // (slot_i < slot_j) and the key order is preserved.
-        let mut kept = 0usize;
-        for k in 0..reported {
-            let Some(&(i, j)) = c.pairs.get(k) else { break };
-            let (Some(&sa), Some(&sb)) = (c.proxy_bodies.get(i as usize), c.proxy_bodies.get(j as usize))
-            else {
-                continue;
-            };
-            if i as usize >= n || j as usize >= n {
-                continue;
-            }
-            let (Some(a), Some(b)) = (self.bodies.get_at(sa), self.bodies.get_at(sb)) else { continue };
-            if !should_collide(a, b) {
-                continue;
-            }
-            let key = (sa.min(sb), sa.max(sb));
-            if c.joint_pairs.get(..held).is_some_and(|h| h.binary_search(&key).is_ok()) {
-                continue;
-            }
-            if let Some(slot) = c.pairs.get_mut(kept) {
-                *slot = (sa.min(sb), sa.max(sb));
-                kept = kept.saturating_add(1);
-            }
-        }
-        let pairs = c.pairs.get_mut(..kept).unwrap_or(&mut []);
-        pairs.sort_unstable();
-        let unique = dedup_sorted(pairs);
-        // The merge writes one arbiter per key of the union; check it fits first.
-        let live = c.arbiters.get(..c.arbiter_count).unwrap_or(&[]);
-        let union = merged_len(c.pairs.get(..unique).unwrap_or(&[]), live);
-        if union > c.next.len() {
-            return Err(Error::CapacityFull { what: "arbiter" });
-        }
-        Ok(unique)
-    }
-
-    /// Narrow phase and arbiter lifecycle for the `npairs` candidates left by
-    /// [`World::broad_phase`]: writes the new sorted arbiter array and runs
-    /// `begin`, `pre_solve` and `end` in key order.
-    pub(crate) fn update_arbiters(&mut self, npairs: usize, dt: Scalar) {
-        let persistence = self.def.arbiter_persistence;
-        let (vmax, wmax) = (self.def.max_linear_speed, self.angular_limit(dt));
-        let World { bodies, paths, contacts: c, handlers, post_step, .. } = self;
-        let bodies: &Arena<'_, Body> = bodies;
-        let Contacts { pairs, arbiters, next, arbiter_count, .. } = c;
-        let live = arbiters.get(..(*arbiter_count).min(arbiters.len())).unwrap_or(&[]);
-        let pairs = pairs.get(..npairs.min(pairs.len())).unwrap_or(&[]);
-        // Each arbiter is built in its output slot (a 256-byte record copied once,
-        // not at every hand-over); a dropped one leaves `out` where it was, so
-        // the next overwrites it. `spare` stands in should the output be full,
-        // which `broad_phase`'s capacity check rules out.
-        let mut spare = Arbiter::EMPTY;
-        let (mut i, mut j, mut out) = (0usize, 0usize, 0usize);
-        loop {
-            let (cand, old) = (pairs.get(i).copied(), live.get(j));
-            let (key, candidate, previous) = match (cand, old) {
-                (None, None) => break,
-                (Some(k), None) => (k, true, None),
-                (None, Some(a)) => (a.key(), false, Some(a)),
-                (Some(k), Some(a)) => match k.cmp(&a.key()) {
-                    core::cmp::Ordering::Less => (k, true, None),
-                    core::cmp::Ordering::Greater => (a.key(), false, Some(a)),
-                    core::cmp::Ordering::Equal => (k, true, Some(a)),
-                },
-            };
-            if candidate {
-                i = i.saturating_add(1);
-            }
-            if previous.is_some() {
-                j = j.saturating_add(1);
-            }
-            let (arb, in_output) = match next.get_mut(out) {
-                Some(slot) => (slot, true),
-                None => (&mut spare, false),
-            };
-            if !pair_arbiter(bodies, key, previous, arb) {
-                continue;
-            }
-            let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else { continue };
-            let manifold = if candidate && should_collide(a, b) {
-                let margin = (SPECULATIVE_DISTANCE + sweep(a, dt, vmax, wmax)) + sweep(b, dt, vmax, wmax);
-                collide_bodies(a, b, paths, margin)
-            } else {
-                Manifold::EMPTY
-            };
-            arb.friction = mix_friction(a.friction, b.friction);
-            arb.restitution = mix_restitution(a.restitution, b.restitution);
-            let mut ctx = CallbackContext { bodies, post_step: &mut *post_step };
-            if lifecycle(arb, &manifold, handlers, &mut ctx, persistence) && in_output {
-                out = out.saturating_add(1);
-            }
-        }
-        core::mem::swap(&mut c.arbiters, &mut c.next);
-        c.arbiter_count = out;
-    }
-
-    /// Calls `post_solve` for every arbiter solved this step, in key order.
-    pub(crate) fn post_solve_callbacks(&mut self) {
-        let World { bodies, contacts, handlers, post_step, .. } = self;
-        if handlers.is_empty() {
-            return;
-        }
-        for arb in contacts.live() {
-            if !arb.solve {
-                continue;
-            }
-            if let Some(h) = handlers.get(arb.level_a, arb.level_b) {
-                let mut ctx = CallbackContext { bodies, post_step: &mut *post_step };
-                h.post_solve(arb, &mut ctx);
-            }
+        let (x, y) = (j.def.body_a.index(), b.index());
+        if let Some(slot) = bp.joint_pairs.get_mut(held) {
+            *slot = (x.min(y), x.max(y));
+            held = held.saturating_add(1);
         }
     }
+    let held_pairs = bp.joint_pairs.get_mut(..held).unwrap_or(&mut []);
+    held_pairs.sort_unstable();
+    let mut n = 0usize;
+    for (h, b) in bodies.iter() {
+        if b.out_of_bounds {
+            continue;
+        }
+        let (Some(p), Some(pb)) = (bp.proxies.get_mut(n), bp.proxy_bodies.get_mut(n)) else {
+            return Err(Error::CapacityFull { what: "broad-phase proxy" });
+        };
+        let margin = SPECULATIVE_DISTANCE + motion_bound(ctx, b);
+        *p = Proxy { aabb: b.aabb.expand(margin), is_static: b.body_type == BodyType::Static };
+        *pb = h.index();
+        n = n.saturating_add(1);
+    }
+    let proxies = bp.proxies.get(..n).unwrap_or(&[]);
+    let mut sink = PairSink { pairs: &mut bp.pairs, len: 0, overflowed: false };
+    match &mut bp.index {
+        Index::Auto if n <= AUTO_THRESHOLD => BruteForceIndex.find_pairs(proxies, &mut sink),
+        Index::Auto => bp.auto_sweep.find_pairs(proxies, &mut sink),
+        Index::BruteForce(i) => i.find_pairs(proxies, &mut sink),
+        Index::SortAndSweep(i) => i.find_pairs(proxies, &mut sink),
+        Index::Custom(i) => i.find_pairs(proxies, &mut sink),
+    }
+    if sink.overflowed {
+        return Err(Error::CapacityFull { what: "contact pair" });
+    }
+    let reported = sink.len;
+    // Map proxy indices to body slots, dropping out-of-range reports and pairs
+    // the manual's filter rejects. Proxies are in slot order, so (i < j) maps to
+    // (slot_i < slot_j) and the key order is preserved.
+    let mut kept = 0usize;
+    for k in 0..reported {
+        let Some(&(i, j)) = bp.pairs.get(k) else { break };
+        let (Some(&sa), Some(&sb)) = (bp.proxy_bodies.get(i as usize), bp.proxy_bodies.get(j as usize))
+        else {
+            continue;
+        };
+        if i as usize >= n || j as usize >= n {
+            continue;
+        }
+        let (Some(a), Some(b)) = (bodies.get_at(sa), bodies.get_at(sb)) else { continue };
+        if !should_collide(a, b) {
+            continue;
+        }
+        let key = (sa.min(sb), sa.max(sb));
+        if bp.joint_pairs.get(..held).is_some_and(|h| h.binary_search(&key).is_ok()) {
+            continue;
+        }
+        if let Some(slot) = bp.pairs.get_mut(kept) {
+            *slot = (sa.min(sb), sa.max(sb));
+            kept = kept.saturating_add(1);
+        }
+    }
+    let pairs = bp.pairs.get_mut(..kept).unwrap_or(&mut []);
+    pairs.sort_unstable();
+    let unique = dedup_sorted(pairs);
+    // The merge writes one arbiter per key of the union; check it fits first.
+    let union = merged_len(bp.candidates(unique), arbiters.live());
+    if union > arbiters.capacity() {
+        return Err(Error::CapacityFull { what: "arbiter" });
+    }
+    Ok(unique)
+}
 
-    /// Ends and drops every arbiter of body slot `index` (before the body is
-    /// removed), calling `end` for those that had begun.
-    pub(crate) fn end_arbiters_of(&mut self, index: u32) {
-        let World { bodies, contacts: c, handlers, post_step, .. } = self;
-        let mut out = 0usize;
-        for k in 0..c.arbiter_count {
-            let Some(mut arb) = c.arbiters.get(k).copied() else { break };
-            if arb.body_a.index() == index || arb.body_b.index() == index {
-                if matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring) {
-                    arb.state = ArbiterState::Separated;
-                    if let Some(h) = handlers.get(arb.level_a, arb.level_b) {
-                        let mut ctx = CallbackContext { bodies, post_step: &mut *post_step };
-                        h.end(&arb, &mut ctx);
-                    }
-                }
-                continue;
-            }
-            if let Some(slot) = c.arbiters.get_mut(out) {
-                *slot = arb;
-            }
+/// The narrow phase and the arbiter lifecycle for the `candidates` left by
+/// [`broad_phase`]: writes the new sorted arbiter array and runs `begin`,
+/// `pre_solve` and `end` in key order.
+pub(crate) fn update_arbiters(
+    ctx: &StepContext,
+    candidates: &[(u32, u32)],
+    bodies: &Arena<'_, Body>,
+    paths: &Arena<'_, PolygonPath>,
+    arbiters: &mut ArbiterStore<'_>,
+    handlers: &mut HandlerTable<'_>,
+    post_step: &mut PostStepQueue,
+) {
+    let (live, next) = arbiters.live_and_next();
+    // Each arbiter is built in its output slot (a 256-byte record copied once,
+    // not at every hand-over); a dropped one leaves `out` where it was, so
+    // the next overwrites it. `spare` stands in should the output be full,
+    // which `broad_phase`'s capacity check rules out.
+    let mut spare = Arbiter::EMPTY;
+    let (mut i, mut j, mut out) = (0usize, 0usize, 0usize);
+    loop {
+        let (cand, old) = (candidates.get(i).copied(), live.get(j));
+        let (key, candidate, previous) = match (cand, old) {
+            (None, None) => break,
+            (Some(k), None) => (k, true, None),
+            (None, Some(a)) => (a.key(), false, Some(a)),
+            (Some(k), Some(a)) => match k.cmp(&a.key()) {
+                core::cmp::Ordering::Less => (k, true, None),
+                core::cmp::Ordering::Greater => (a.key(), false, Some(a)),
+                core::cmp::Ordering::Equal => (k, true, Some(a)),
+            },
+        };
+        if candidate {
+            i = i.saturating_add(1);
+        }
+        if previous.is_some() {
+            j = j.saturating_add(1);
+        }
+        let (arb, in_output) = match next.get_mut(out) {
+            Some(slot) => (slot, true),
+            None => (&mut spare, false),
+        };
+        if !pair_arbiter(bodies, key, previous, arb) {
+            continue;
+        }
+        let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else { continue };
+        let manifold = if candidate && should_collide(a, b) {
+            let margin = SPECULATIVE_DISTANCE + motion_bound(ctx, a) + motion_bound(ctx, b);
+            collide_bodies(a, b, paths, margin)
+        } else {
+            Manifold::EMPTY
+        };
+        arb.friction = mix_friction(a.friction, b.friction);
+        arb.restitution = mix_restitution(a.restitution, b.restitution);
+        let mut ctx_cb = CallbackContext { bodies, post_step: &mut *post_step };
+        if lifecycle(arb, &manifold, handlers, &mut ctx_cb, ctx.arbiter_persistence) && in_output {
             out = out.saturating_add(1);
         }
-        c.arbiter_count = out;
     }
+    arbiters.swap_in_next(out);
+}
+
+/// Calls `post_solve` for every arbiter solved this step, in key order.
+pub(crate) fn post_solve(
+    bodies: &Arena<'_, Body>,
+    arbiters: &ArbiterStore<'_>,
+    handlers: &mut HandlerTable<'_>,
+    post_step: &mut PostStepQueue,
+) {
+    if handlers.is_empty() {
+        return;
+    }
+    for arb in arbiters.live() {
+        if !arb.solve {
+            continue;
+        }
+        if let Some(h) = handlers.get(arb.level_a, arb.level_b) {
+            let mut ctx = CallbackContext { bodies, post_step: &mut *post_step };
+            h.post_solve(arb, &mut ctx);
+        }
+    }
+}
+
+/// Ends and drops every arbiter of body slot `index` (before the body is
+/// removed), calling `end` for those that had begun.
+pub(crate) fn end_arbiters_of(
+    index: u32,
+    bodies: &Arena<'_, Body>,
+    arbiters: &mut ArbiterStore<'_>,
+    handlers: &mut HandlerTable<'_>,
+    post_step: &mut PostStepQueue,
+) {
+    arbiters.retain(|arb| {
+        if arb.body_a.index() != index && arb.body_b.index() != index {
+            return true;
+        }
+        if matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring) {
+            let mut ended = *arb;
+            ended.state = ArbiterState::Separated;
+            if let Some(h) = handlers.get(ended.level_a, ended.level_b) {
+                let mut ctx = CallbackContext { bodies, post_step: &mut *post_step };
+                h.end(&ended, &mut ctx);
+            }
+        }
+        false
+    });
 }
 
 /// Runs one pair's lifecycle for this step. Returns whether to keep the arbiter.
@@ -364,19 +371,20 @@ fn pair_arbiter(
     true
 }
 
-/// How far any point of the body can move in `dt` at its current velocity, as an
-/// upper bound: (|vx| + |vy| + |ω|·r)·dt. Contacts are made this much earlier, so the
+/// The motion bound of a body: how far any point of it can move in `dt` at its
+/// current velocity, as an upper bound: (|vx| + |vy| + |ω|·r)·dt. Contacts are made this much earlier, so the
 /// solver's speculative constraint stops a fast body at the surface instead of
 /// finding it deep inside next step (speculative continuous collision).
 ///
 /// Speeds are taken at most at the world's limits, which the step enforces: a
 /// velocity a game set far above them cannot inflate the margins.
-fn sweep(b: &Body, dt: Scalar, vmax: Scalar, wmax: Scalar) -> Scalar {
-    if !b.is_awake_mover() {
+fn motion_bound(ctx: &StepContext, b: &Body) -> Scalar {
+    if !b.moved_by_step() {
         return Scalar::ZERO;
     }
+    let (vmax, wmax) = (ctx.max_linear_speed, ctx.max_angular_speed);
     let v = b.linear_velocity;
-    ((v.x.abs().min(vmax) + v.y.abs().min(vmax)) + (b.angular_velocity.abs().min(wmax) * b.radius)) * dt
+    ((v.x.abs().min(vmax) + v.y.abs().min(vmax)) + (b.angular_velocity.abs().min(wmax) * b.radius)) * ctx.dt
 }
 
 /// The contact manifold of two bodies in canonical order (normal from A to B),

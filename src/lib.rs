@@ -132,11 +132,12 @@ pub mod force;
 pub mod geometry;
 pub mod handler;
 pub mod index;
+pub mod limits;
 pub mod math;
 pub mod query;
 pub mod snapshot;
 mod solver;
-mod step;
+pub(crate) mod step;
 pub mod world;
 
 pub use arbiter::{Arbiter, ArbiterState, ContactPoint};
@@ -154,17 +155,13 @@ pub use force::{
 pub use geometry::{MassData, PolygonPath};
 pub use handler::{CallbackContext, CollisionHandler, FnHandler, Handler, PostStepFn};
 pub use index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};
+pub use limits::MAX_TIME_STEP;
 pub use managed::{Managed, ManagedSlice};
 pub use math::{Matrix22, Rect, Rot, Scalar, Transform, Vector2};
 pub use query::{QueryFilter, QueryShape, RayHit};
-pub use solver::{ContactConstraint, SolverBody};
 pub use world::{
     Capacities, GeneratorHandle, JointBreakFn, StepReport, Storage, World, WorldBuffers, WorldDef,
 };
-
-/// The longest time step [`World::step`] accepts: 0.25 s. Longer steps are never
-/// physically meaningful and would let fast bodies move too far in one step.
-pub const MAX_TIME_STEP: Scalar = Scalar::lit("0.25");
 
 /// The README's examples, compiled and run as doctests so they cannot rot.
 #[cfg(doctest)]

@@ -1,149 +1,163 @@
 //! The step pipeline.
 //!
-//! `World::step(dt)` runs these stages in this order, each a function:
+//! [`World::step`](crate::World::step) checks `dt`, builds one [`StepContext`]
+//! (every value derived from the configuration and `dt`, computed once) and runs
+//! [`run`], which calls the stages below in this order. Each stage is a function
+//! over the context and exactly the parts of the world it touches; none sees the
+//! world itself.
 //!
-//! 1. **validate**: `dt` in (0, [`MAX_TIME_STEP`]].
-//! 2. **broad phase**: proxies and candidate pairs ([`crate::index`]). Every
-//!    capacity the step needs is checked here, before anything changes, so a step
-//!    either fails with an error and leaves the world as it was, or completes.
-//! 3. **forces**: each force generator, in the order added, over the dynamic
-//!    bodies it accepts (slot order). The velocity change is spread over the
-//!    sub-steps by the solver.
-//! 4. **narrow phase and arbiter lifecycle**: manifolds, states, and the `begin`,
-//!    `pre_solve` and `end` callbacks in canonical pair order ([`crate::collision`]).
-//! 5. **solve and integrate**: the sub-stepped soft contact solver, which also
-//!    advances positions ([`crate::solver`]), then the restitution pass.
-//! 6. **limits**: speeds clamped to the world's maxima; bodies whose centre left the
-//!    bounds are frozen and reported; bounding boxes refreshed.
-//! 7. **post_solve callbacks**, in canonical pair order.
-//! 8. **broken joints** are removed, in joint-slot order, each handed to the
-//!    break callback.
-//! 9. **post-step callbacks**, once per key, in registration order, with
-//!    `&mut World`: the safe place to remove bodies. Callbacks registered while
-//!    these run (or outside a step) run after the next step.
+//! 1. **broad phase** ([`collision::broad_phase`]): proxies and candidate pairs.
+//!    Every capacity the step needs is checked here, before anything changes, so
+//!    a step either fails with an error and leaves the world as it was, or
+//!    completes.
+//! 2. **forces** ([`force::apply`]): each force generator, in the order added, over
+//!    the dynamic bodies it accepts (slot order). The velocity change is spread
+//!    over the sub-steps by the solver.
+//! 3. **narrow phase and arbiter lifecycle** ([`collision::update_arbiters`]):
+//!    manifolds, states, and the `begin`, `pre_solve` and `end` callbacks in
+//!    canonical pair order.
+//! 4. **solve and integrate** ([`solver::solve`]): the sub-stepped soft contact
+//!    and joint solver, which also advances positions, then the restitution pass.
+//! 5. **limits** ([`limits::enforce`]): speeds clamped to the world's maxima;
+//!    bodies whose centre left the bounds are frozen and reported; bounding boxes
+//!    refreshed.
+//! 6. **`post_solve` callbacks** ([`collision::post_solve`]), in canonical pair
+//!    order.
+//!
+//! After [`run`], the world (which owns the hooks that need it) removes the
+//! joints that broke, in joint-slot order, handing each to the break callback,
+//! then runs the post-step callbacks, once per key, in registration order, with
+//! `&mut World`: the safe place to remove bodies. Callbacks registered while
+//! these run (or outside a step) run after the next step.
 //!
 //! Every loop runs in body-slot or pair-key order, functions of the simulation
 //! history alone.
 
+use crate::arbiter::ArbiterStore;
+use crate::arena::Arena;
+use crate::body::Body;
+use crate::collision::{self, BroadPhase};
+use crate::constraint::{Joint, JointMarker, UserConstraints};
 use crate::error::Error;
-use crate::math::scalar::{Scalar, ZERO};
-use crate::math::Vector2;
-use crate::world::{compute_aabb, StepReport, World};
-use crate::MAX_TIME_STEP;
+use crate::force::{self, Generators};
+use crate::geometry::PolygonPath;
+use crate::handler::{HandlerTable, PostStepQueue};
+use crate::limits::{self, MAX_TIME_STEP};
+use crate::math::scalar::{self, Scalar, ZERO};
+use crate::math::Rect;
+use crate::solver::{self, Softness, Solver};
+use crate::world::def::WorldDef;
 
-impl World<'_> {
-    /// Advances the simulation by `dt` seconds.
+/// What happened during a step.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StepReport {
+    /// Bodies that left the bounds this step (now frozen; see
+    /// [`World::out_of_bounds_bodies`](crate::World::out_of_bounds_bodies)).
+    pub left_bounds: u32,
+    /// Arbiters alive after the step (touching pairs and persisted ones).
+    pub arbiters: u32,
+    /// Post-step callbacks that ran after the step.
+    pub post_step_callbacks: u32,
+    /// Breakable joints that broke this step (and were removed).
+    pub joints_broken: u32,
+}
+
+/// Everything a step derives from the world's configuration and `dt`, computed
+/// once per step and read by every stage.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StepContext {
+    /// The step, s.
+    pub(crate) dt: Scalar,
+    /// Solver sub-steps.
+    pub(crate) substeps: u32,
+    /// 1 / `substeps`: the share of the generators' velocity change per sub-step.
+    pub(crate) inv_substeps: Scalar,
+    /// The sub-step `h = dt / substeps`, s.
+    pub(crate) h: Scalar,
+    /// 1 / `h`, 1/s.
+    pub(crate) inv_h: Scalar,
+    /// The speed limit, m/s.
+    pub(crate) max_linear_speed: Scalar,
+    /// The spin limit for this step, rad/s: the configured one, and at most π/4
+    /// (an eighth of a turn) per step, so the linearised rotation of the solver
+    /// and the contact margins stay accurate.
+    pub(crate) max_angular_speed: Scalar,
+    /// The world bounds.
+    pub(crate) bounds: Rect,
+    /// Contact softness between two moving bodies.
+    pub(crate) contact_softness: Softness,
+    /// Contact softness against a static or kinematic body (twice as stiff).
+    pub(crate) static_softness: Softness,
+    /// Fastest speed at which overlap is pushed out, m/s.
+    pub(crate) push_speed: Scalar,
+    /// Approach speed below which contacts do not bounce, m/s.
+    pub(crate) restitution_threshold: Scalar,
+    /// Steps an arbiter outlives the contact.
+    pub(crate) arbiter_persistence: u32,
+}
+
+impl StepContext {
+    /// The context of a step of `dt` seconds in a world configured by `def`.
     ///
     /// # Errors
-    /// [`Error::InvalidTimeStep`] when `dt ≤ 0` or `dt > MAX_TIME_STEP`;
-    /// [`Error::CapacityFull`] when the candidate pairs or arbiters do not fit the
-    /// contact buffers. On error the world is unchanged.
-    pub fn step(&mut self, dt: Scalar) -> Result<StepReport, Error> {
+    /// [`Error::InvalidTimeStep`] when `dt ≤ 0` or `dt > MAX_TIME_STEP`.
+    pub(crate) fn new(def: &WorldDef, dt: Scalar) -> Result<Self, Error> {
         if dt <= ZERO || dt > MAX_TIME_STEP {
             return Err(Error::InvalidTimeStep);
         }
-        let npairs = self.broad_phase(dt)?;
-        self.apply_forces(dt);
-        self.update_arbiters(npairs, dt);
-        self.solve_and_integrate(dt);
-        let left_bounds = self.enforce_limits(dt);
-        self.post_solve_callbacks();
-        self.step_count = self.step_count.wrapping_add(1);
-        let joints_broken = self.remove_broken_joints();
-        let post_step_callbacks = self.run_post_step_callbacks();
-        Ok(StepReport {
-            left_bounds,
-            arbiters: self.contacts.arbiter_count as u32,
-            post_step_callbacks,
-            joints_broken,
+        let substeps = def.substeps.max(1);
+        let inv_substeps = Scalar::from_num(substeps).recip();
+        let h = dt * inv_substeps;
+        let inv_h = h.recip();
+        // Box2D caps the contact stiffness at a quarter of the sub-step rate.
+        let hertz = def.contact_hertz.min(inv_h * Scalar::lit("0.25"));
+        let zeta = def.contact_damping_ratio;
+        let eighth_turn = (scalar::FRAC_PI_2 * scalar::HALF).div_or_zero(dt);
+        Ok(Self {
+            dt,
+            substeps,
+            inv_substeps,
+            h,
+            inv_h,
+            max_linear_speed: def.max_linear_speed,
+            max_angular_speed: def.max_angular_speed.min(eighth_turn),
+            bounds: def.bounds,
+            contact_softness: Softness::new(hertz, zeta, h),
+            static_softness: Softness::new(hertz * scalar::TWO, zeta, h),
+            push_speed: def.contact_push_speed,
+            restitution_threshold: def.restitution_threshold,
+            arbiter_persistence: def.arbiter_persistence,
         })
     }
+}
 
-    /// Runs the generators and turns their effect into a pending velocity change
-    /// (restoring the velocities), which the solver spreads over the sub-steps.
-    fn apply_forces(&mut self, dt: Scalar) {
-        for (_, b) in self.bodies.iter_mut() {
-            b.pending_v = b.linear_velocity;
-            b.pending_w = b.angular_velocity;
-        }
-        let used = self.generators.slots_used();
-        for i in 0..used {
-            if let Some(g) = self.generators.get_at_mut(i) {
-                g.run(&mut self.bodies, dt);
-            }
-        }
-        for (_, b) in self.bodies.iter_mut() {
-            let (v0, w0) = (b.pending_v, b.pending_w);
-            b.pending_v = b.linear_velocity - v0;
-            b.pending_w = b.angular_velocity - w0;
-            b.linear_velocity = v0;
-            b.angular_velocity = w0;
-        }
-    }
+/// The parts of a world the step's stages work on, borrowed apart so that each
+/// stage gets exactly the ones it touches.
+pub(crate) struct StepParts<'w, 'a> {
+    pub(crate) bodies: &'w mut Arena<'a, Body>,
+    pub(crate) paths: &'w Arena<'a, PolygonPath>,
+    pub(crate) generators: &'w mut Generators<'a>,
+    pub(crate) broad_phase: &'w mut BroadPhase<'a>,
+    pub(crate) arbiters: &'w mut ArbiterStore<'a>,
+    pub(crate) handlers: &'w mut HandlerTable<'a>,
+    pub(crate) post_step: &'w mut PostStepQueue,
+    pub(crate) joints: &'w mut Arena<'a, Joint, JointMarker>,
+    pub(crate) constraints: &'w mut UserConstraints<'a>,
+    pub(crate) solver: &'w mut Solver<'a>,
+}
 
-    /// Speed limits, bounds and bounding boxes. Returns how many bodies left the
-    /// bounds this step.
-    fn enforce_limits(&mut self, dt: Scalar) -> u32 {
-        let bounds = self.def.bounds;
-        let vmax = self.def.max_linear_speed;
-        let wmax = self.angular_limit(dt);
-        let mut left = 0u32;
-        for (_, b) in self.bodies.iter_mut() {
-            if !b.is_awake_mover() {
-                continue;
-            }
-            // Components are clamped first so the length cannot saturate.
-            let v = b.linear_velocity;
-            let v = Vector2::new(v.x.clamp(-vmax, vmax), v.y.clamp(-vmax, vmax));
-            // |v|² fits: each component is at most MAX_LINEAR_SPEED_LIMIT (2048).
-            b.linear_velocity = if v.length_squared() > vmax * vmax { v.normalize() * vmax } else { v };
-            b.angular_velocity = b.angular_velocity.clamp(-wmax, wmax);
-            if !bounds.contains(b.position) {
-                b.out_of_bounds = true;
-                b.linear_velocity = Vector2::ZERO;
-                b.angular_velocity = ZERO;
-                left = left.saturating_add(1);
-            }
-        }
-        let used = self.bodies.slots_used();
-        for i in 0..used {
-            let aabb = match self.bodies.get_at(i) {
-                Some(b) if b.body_type != crate::BodyType::Static => compute_aabb(b, &self.paths),
-                _ => continue,
-            };
-            if let Some(b) = self.bodies.get_at_mut(i) {
-                b.aabb = aabb;
-            }
-        }
-        left
-    }
-
-    /// Removes the joints that broke this step, in slot order, handing each to
-    /// the break callback. Returns how many broke.
-    fn remove_broken_joints(&mut self) -> u32 {
-        let mut broken = 0u32;
-        for i in 0..self.joints.slots_used() {
-            if !self.joints.get_at(i).is_some_and(|j| j.broken) {
-                continue;
-            }
-            let Some(h) = self.joints.handle_at(i) else { continue };
-            if let Some(joint) = self.joints.remove(h) {
-                broken = broken.saturating_add(1);
-                if let Some(f) = self.break_callback {
-                    f(self, h, joint);
-                }
-            }
-        }
-        broken
-    }
-
-    fn run_post_step_callbacks(&mut self) -> u32 {
-        let queue = core::mem::take(&mut self.post_step);
-        let mut ran = 0u32;
-        for (f, key) in queue {
-            f(self, key);
-            ran = ran.saturating_add(1);
-        }
-        ran
-    }
+/// Runs the stages of one step. On error nothing has changed.
+///
+/// # Errors
+/// [`Error::CapacityFull`] when the candidate pairs or arbiters do not fit the
+/// contact buffers.
+pub(crate) fn run(ctx: &StepContext, p: StepParts<'_, '_>) -> Result<StepReport, Error> {
+    let n = collision::broad_phase(ctx, p.bodies, p.joints, p.broad_phase, p.arbiters)?;
+    force::apply(ctx, p.bodies, p.generators);
+    let candidates = p.broad_phase.candidates(n);
+    collision::update_arbiters(ctx, candidates, p.bodies, p.paths, p.arbiters, p.handlers, p.post_step);
+    solver::solve(ctx, p.bodies, p.arbiters, p.joints, p.constraints, p.solver);
+    let left_bounds = limits::enforce(ctx, p.bodies, p.paths);
+    collision::post_solve(p.bodies, p.arbiters, p.handlers, p.post_step);
+    Ok(StepReport { left_bounds, arbiters: p.arbiters.len() as u32, ..StepReport::default() })
 }

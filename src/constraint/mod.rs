@@ -40,11 +40,11 @@ use managed::Managed;
 use crate::arena::Handle;
 use crate::body::{Body, BodyHandle};
 use crate::error::Error;
+use crate::limits::MAX_BODY_RADIUS;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::Matrix22;
 use crate::math::{Rect, Rot, Vector2};
 use crate::solver::SolverBody;
-use crate::world::MAX_BODY_RADIUS;
 
 /// Stiffness of the soft position correction of rods, ropes, pivots and welds, Hz
 /// (Box2D v3's joint default; capped at a quarter of the sub-step rate).
@@ -307,8 +307,8 @@ pub(crate) fn validate_params(def: &JointDef) -> Result<(), Error> {
         return Err(Error::OutOfRange { what: "anchor" });
     }
     if def.body_b.is_none()
-        && (def.anchor_b.x.abs() > crate::world::MAX_COORDINATE
-            || def.anchor_b.y.abs() > crate::world::MAX_COORDINATE)
+        && (def.anchor_b.x.abs() > crate::limits::MAX_COORDINATE
+            || def.anchor_b.y.abs() > crate::limits::MAX_COORDINATE)
     {
         return Err(Error::OutOfRange { what: "anchor" });
     }
@@ -495,6 +495,14 @@ pub(crate) struct UserConstraint<'a> {
     pub(crate) body_b: Option<BodyHandle>,
     pub(crate) constraint: Managed<'a, dyn Constraint + Send + 'a>,
 }
+
+/// A world's game constraints, in registration order (slot order).
+pub(crate) type UserConstraints<'a> = crate::arena::Arena<
+    'a,
+    UserConstraint<'a>,
+    ConstraintMarker,
+    [crate::arena::Slot<UserConstraint<'a>>; MAX_USER_CONSTRAINTS],
+>;
 
 /// A static body at the origin: the "other body" of a joint to a world point.
 pub(crate) fn ground() -> Body {

@@ -20,6 +20,9 @@ pub use linear::LinearForceGenerator;
 
 use managed::Managed;
 
+use crate::arena::{Arena, Handle, Slot};
+use crate::step::StepContext;
+
 use crate::body::{Body, BodyHandle};
 use crate::math::Scalar;
 
@@ -77,6 +80,43 @@ impl Targets {
     }
 }
 
+/// Marker type naming force generators in handles.
+#[derive(Debug)]
+pub enum GeneratorMarker {}
+
+/// Handle of a force generator in a [`World`](crate::World).
+pub type GeneratorHandle = Handle<GeneratorMarker>;
+
+/// Force generators a world can hold. Hooks (generators, handlers, callbacks) are
+/// few and may borrow the game's objects, so they live inline in the world with
+/// fixed capacities; the bulk data (bodies, paths, arbiters) is in the storage
+/// sized by the caller.
+pub const MAX_FORCE_GENERATORS: usize = 16;
+
+/// A world's force generators, in the order added (slot order).
+pub(crate) type Generators<'a> =
+    Arena<'a, Generator<'a>, GeneratorMarker, [Slot<Generator<'a>>; MAX_FORCE_GENERATORS]>;
+
+/// The forces stage: runs the generators, in slot order, and turns their effect
+/// into a velocity change per body (`force_dv`, `force_dw`), restoring the
+/// velocities, so that the solver spreads it evenly over the sub-steps.
+pub(crate) fn apply(ctx: &StepContext, bodies: &mut Arena<'_, Body>, generators: &mut Generators<'_>) {
+    for (_, b) in bodies.iter_mut() {
+        b.force_dv = b.linear_velocity;
+        b.force_dw = b.angular_velocity;
+    }
+    for (_, g) in generators.iter_mut() {
+        g.run(bodies, ctx.dt);
+    }
+    for (_, b) in bodies.iter_mut() {
+        let (v0, w0) = (b.force_dv, b.force_dw);
+        b.force_dv = b.linear_velocity - v0;
+        b.force_dw = b.angular_velocity - w0;
+        b.linear_velocity = v0;
+        b.angular_velocity = w0;
+    }
+}
+
 /// A force generator stored in a world: one of the built-ins, or a game's own.
 pub enum Generator<'a> {
     /// A constant force.
@@ -112,7 +152,7 @@ impl<'a> Generator<'a> {
     }
 
     /// Runs the generator over every candidate body for one step.
-    pub(crate) fn run(&mut self, bodies: &mut crate::arena::Arena<'_, Body>, dt: Scalar) {
+    pub(crate) fn run(&mut self, bodies: &mut Arena<'_, Body>, dt: Scalar) {
         let g = self.as_dyn_mut();
         for (h, b) in bodies.iter_mut() {
             if b.is_dynamic() && !b.out_of_bounds && g.applies_to(h, b) {

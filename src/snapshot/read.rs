@@ -8,6 +8,7 @@ use super::{
 };
 use crate::arbiter::{Arbiter, ArbiterState};
 use crate::arena::NO_SLOT;
+use crate::body::compute_aabb;
 use crate::body::{Body, BodyHandle, BodyType, Shape};
 use crate::constraint::{Joint, JointDef, JointKind, MaxTorque, Motor};
 use crate::error::Error;
@@ -19,7 +20,7 @@ use crate::geometry::mass::{MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};
 use crate::geometry::MassData;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rect, Rot, Vector2};
-use crate::world::{compute_aabb, World, WorldDef, MAX_COORDINATE, MAX_FORCE_GENERATORS, MAX_FRICTION};
+use crate::world::{World, WorldDef, MAX_COORDINATE, MAX_FORCE_GENERATORS, MAX_FRICTION};
 
 fn bad(what: &'static str) -> Error {
     Error::InvalidSnapshot { what }
@@ -612,7 +613,7 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
         Ok((g == StoredGenerator::Free).then_some(next))
     })?;
     // Arbiters: sorted by key, at most two points, a state that persists.
-    if l.arbiters as usize > w.contacts.arbiters.len() {
+    if l.arbiters as usize > w.arbiters.capacity() {
         return Err(Error::SnapshotMismatch { what: "more arbiters than this world holds" });
     }
     let mut last: Option<(u32, u32)> = None;
@@ -717,7 +718,7 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
     }
     w.generators.finish_restore(l.generators.used, slot_link(l.generators.free_head), l.generators.len);
     // Arbiters.
-    let mut n = 0usize;
+    w.arbiters.clear();
     for i in 0..l.arbiters {
         let Ok(a) = l.arbiter(i) else { continue };
         let level = |h: BodyHandle| w.bodies.get(h).map_or(0, |b| b.collision_level);
@@ -736,12 +737,8 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
             p.normal_impulse = normal;
             p.tangent_impulse = tangent;
         }
-        if let Some(slot) = w.contacts.arbiters.get_mut(n) {
-            *slot = arb;
-            n = n.saturating_add(1);
-        }
+        w.arbiters.push(arb);
     }
-    w.contacts.arbiter_count = n;
     // Joints.
     for i in 0..l.joints.used {
         let Ok(r) = l.joint(i) else { continue };

@@ -127,7 +127,7 @@ pub(super) fn write(w: &World<'_>, s: &mut impl Sink) {
         }
     }
 
-    let live = w.contacts.live();
+    let live = w.arbiters.live();
     s.u32(live.len() as u32);
     for a in live {
         for h in [a.body_a, a.body_b] {

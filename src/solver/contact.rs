@@ -67,10 +67,10 @@ impl SolverBody {
             p: b.position,
             q: b.rotation,
             angle: ZERO,
-            pending_v: b.pending_v * inv_n,
-            pending_w: b.pending_w * inv_n,
+            pending_v: b.force_dv * inv_n,
+            pending_w: b.force_dw * inv_n,
             forced: b.is_dynamic() && !b.out_of_bounds,
-            moves: b.is_awake_mover(),
+            moves: b.moved_by_step(),
             dynamic: b.is_dynamic(),
         }
     }

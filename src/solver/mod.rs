@@ -60,10 +60,13 @@ pub(crate) use contact::inverse_mass;
 use contact::StepParams;
 use managed::ManagedSlice;
 
-use crate::constraint::Joint;
+use crate::arbiter::ArbiterStore;
+use crate::arena::Arena;
+use crate::body::Body;
+use crate::constraint::{Joint, JointMarker, UserConstraints};
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::Vector2;
-use crate::world::World;
+use crate::step::StepContext;
 
 /// The direction of sub-step `substep`'s warm start: against the pass before it
 /// (the previous sub-step's relax sweep, or the forward constraint build), so
@@ -107,210 +110,203 @@ impl Softness {
     }
 }
 
-impl World<'_> {
-    /// Solves the contacts and advances positions for a step of `dt`.
-    pub(crate) fn solve_and_integrate(&mut self, dt: Scalar) {
-        let n = self.def.substeps.max(1);
-        let inv_n = Scalar::from_num(n).recip();
-        let h = dt * inv_n;
-        let inv_h = h.recip();
-        // Box2D caps the contact stiffness at a quarter of the sub-step rate.
-        let hertz = self.def.contact_hertz.min(inv_h * Scalar::lit("0.25"));
-        let zeta = self.def.contact_damping_ratio;
-        let params = StepParams {
-            inv_h,
-            soft: Softness::new(hertz, zeta, h),
-            static_soft: Softness::new(hertz * scalar::TWO, zeta, h),
-            push_speed: self.def.contact_push_speed,
+/// The solve stage: the contacts and joints, sub-stepped, and the positions
+/// advanced; then restitution, and the impulses stored back into the arbiters.
+pub(crate) fn solve(
+    ctx: &StepContext,
+    bodies: &mut Arena<'_, Body>,
+    arbiters: &mut ArbiterStore<'_>,
+    joints: &mut Arena<'_, Joint, JointMarker>,
+    constraints: &mut UserConstraints<'_>,
+    solver: &mut Solver<'_>,
+) {
+    let n = ctx.substeps;
+    let h = ctx.h;
+    let params = StepParams {
+        inv_h: ctx.inv_h,
+        soft: ctx.contact_softness,
+        static_soft: ctx.static_softness,
+        push_speed: ctx.push_speed,
+    };
+    load(bodies, arbiters, solver, ctx.inv_substeps, &params);
+    prepare_joints(ctx, bodies, joints, constraints);
+    // The built-in joints work on the solver's bodies; the game's constraints
+    // see `Body`, so when there are any the solver's copy is written to the
+    // bodies around their pass.
+    let user = !constraints.is_empty();
+    let (vmax, wmax) = (ctx.max_linear_speed, ctx.max_angular_speed);
+    for substep in 0..n {
+        let reverse = sweep_reverse(substep);
+        let (sbodies, _) = solver.split();
+        for sb in sbodies.iter_mut().filter(|sb| sb.forced) {
+            sb.v += sb.pending_v;
+            sb.w += sb.pending_w;
+        }
+        for_each_joint(joints, solver, false, |j, a, b| j.warm_start(a, b));
+        let (sbodies, cs) = solver.split();
+        contact::warm_start(sbodies, cs, warm_start_reverse(substep), substep > 0);
+        for_each_joint(joints, solver, false, |j, a, b| j.solve(a, b, h, true));
+        if user {
+            store_bodies(solver, bodies);
+            solve_user_constraints(bodies, constraints, h);
+            reload_bodies(solver, bodies);
+        }
+        let (sbodies, cs) = solver.split();
+        contact::solve(sbodies, cs, &params, true, reverse, reverse);
+        for sb in sbodies.iter_mut().filter(|sb| sb.moves) {
+            // Component clamps are cheap and bound the displacement; the
+            // exact speed limit is applied once at the end of the step.
+            let v = sb.v;
+            sb.v = Vector2::new(v.x.clamp(-vmax, vmax), v.y.clamp(-vmax, vmax));
+            sb.w = sb.w.clamp(-wmax, wmax);
+            sb.p += sb.v * h;
+            let turn = sb.w * h;
+            sb.angle += turn;
+            sb.q = sb.q.integrate(turn);
+        }
+        // Relax: one sweep in the sub-step's direction; the last sub-step
+        // adds a forward sweep, which drains what the push-out left in the
+        // velocities the step ends with.
+        for_each_joint(joints, solver, true, |j, a, b| j.solve(a, b, h, false));
+        let (sbodies, cs) = solver.split();
+        contact::solve(sbodies, cs, &params, false, reverse, reverse);
+        if substep + 1 == n {
+            contact::solve(sbodies, cs, &params, false, false, false);
+        }
+    }
+    let (sbodies, cs) = solver.split();
+    contact::restitute_and_store(sbodies, cs, arbiters.live_mut(), ctx.restitution_threshold);
+    store_bodies(solver, bodies);
+    for (_, j) in joints.iter_mut() {
+        j.broken = j.finish_step();
+    }
+    for (_, b) in bodies.iter_mut() {
+        b.force_dv = Vector2::ZERO;
+        b.force_dw = ZERO;
+    }
+}
+
+/// Copies the bodies into the solver's array and builds the contact
+/// constraints of the arbiters solved this step, in arbiter order.
+fn load(
+    bodies: &Arena<'_, Body>,
+    arbiters: &mut ArbiterStore<'_>,
+    solver: &mut Solver<'_>,
+    inv_n: Scalar,
+    params: &StepParams,
+) {
+    let sbodies: &mut [SolverBody] = &mut solver.bodies;
+    for (i, b) in bodies.iter() {
+        if let Some(sb) = sbodies.get_mut(i.index() as usize) {
+            *sb = SolverBody::load(b, inv_n);
+        }
+    }
+    let mut count = 0usize;
+    for (k, arb) in arbiters.live_mut().iter_mut().enumerate() {
+        if !arb.solve {
+            continue;
+        }
+        let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else {
+            arb.solve = false;
+            continue;
         };
-        self.load_solver(inv_n, &params);
-        self.prepare_constraints(dt, h);
-        // The built-in joints work on the solver's bodies; the game's constraints
-        // see `Body`, so when there are any the solver's copy is written to the
-        // bodies around their pass.
-        let user = !self.constraints.is_empty();
-        let (vmax, wmax) = (self.def.max_linear_speed, self.angular_limit(dt));
-        for substep in 0..n {
-            let reverse = sweep_reverse(substep);
-            let (bodies, _) = self.solver.split();
-            for sb in bodies.iter_mut().filter(|sb| sb.forced) {
-                sb.v += sb.pending_v;
-                sb.w += sb.pending_w;
-            }
-            self.for_each_joint(|j, a, b| j.warm_start(a, b));
-            let (bodies, constraints) = self.solver.split();
-            contact::warm_start(bodies, constraints, warm_start_reverse(substep), substep > 0);
-            self.for_each_joint(|j, a, b| j.solve(a, b, h, true));
-            if user {
-                self.joint_pass(|w| w.solve_user_constraints(h));
-            }
-            let (bodies, constraints) = self.solver.split();
-            contact::solve(bodies, constraints, &params, true, reverse, reverse);
-            for sb in bodies.iter_mut().filter(|sb| sb.moves) {
-                // Component clamps are cheap and bound the displacement; the
-                // exact speed limit is applied once at the end of the step.
-                let v = sb.v;
-                sb.v = Vector2::new(v.x.clamp(-vmax, vmax), v.y.clamp(-vmax, vmax));
-                sb.w = sb.w.clamp(-wmax, wmax);
-                sb.p += sb.v * h;
-                let turn = sb.w * h;
-                sb.angle += turn;
-                sb.q = sb.q.integrate(turn);
-            }
-            // Relax: one sweep in the sub-step's direction; the last sub-step
-            // adds a forward sweep, which drains what the push-out left in the
-            // velocities the step ends with.
-            self.for_each_joint_in(true, |j, a, b| j.solve(a, b, h, false));
-            let (bodies, constraints) = self.solver.split();
-            contact::solve(bodies, constraints, &params, false, reverse, reverse);
-            if substep + 1 == n {
-                contact::solve(bodies, constraints, &params, false, false, false);
-            }
-        }
-        let threshold = self.def.restitution_threshold;
-        let World { contacts, solver, .. } = self;
-        let (bodies, constraints) = solver.split();
-        contact::restitute_and_store(bodies, constraints, contacts.live_mut(), threshold);
-        self.store_solver_bodies();
-        for (_, j) in self.joints.iter_mut() {
-            j.broken = j.finish_step();
-        }
-        for (_, b) in self.bodies.iter_mut() {
-            b.pending_v = Vector2::ZERO;
-            b.pending_w = ZERO;
+        // The constraint buffer is as long as the arbiter buffer.
+        let Some(slot) = solver.constraints.get_mut(count) else { break };
+        contact::prepare(k as u32, arb, (arb.body_a.index(), arb.body_b.index()), (a, b), params, slot);
+        count = count.saturating_add(1);
+    }
+    solver.count = count;
+}
+
+/// Writes the solver's copy of every body back to the bodies.
+fn store_bodies(solver: &Solver<'_>, bodies: &mut Arena<'_, Body>) {
+    let sbodies: &[SolverBody] = &solver.bodies;
+    for (i, b) in bodies.iter_mut() {
+        if let Some(sb) = sbodies.get(i.index() as usize) {
+            sb.store(b);
         }
     }
+}
 
-    /// Copies the bodies into the solver's array and builds the contact
-    /// constraints of the arbiters solved this step, in arbiter order.
-    fn load_solver(&mut self, inv_n: Scalar, params: &StepParams) {
-        let World { bodies, contacts, solver, .. } = self;
-        let sbodies: &mut [SolverBody] = &mut solver.bodies;
-        for (i, b) in bodies.iter() {
-            if let Some(sb) = sbodies.get_mut(i.index() as usize) {
-                *sb = SolverBody::load(b, inv_n);
-            }
-        }
-        let mut count = 0usize;
-        for (k, arb) in contacts.live_mut().iter_mut().enumerate() {
-            if !arb.solve {
-                continue;
-            }
-            let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else {
-                arb.solve = false;
-                continue;
-            };
-            // The constraint buffer is as long as the arbiter buffer.
-            let Some(slot) = solver.constraints.get_mut(count) else { break };
-            contact::prepare(k as u32, arb, (arb.body_a.index(), arb.body_b.index()), (a, b), params, slot);
-            count = count.saturating_add(1);
-        }
-        solver.count = count;
-    }
-
-    fn store_solver_bodies(&mut self) {
-        let World { bodies, solver, .. } = self;
-        let sbodies: &[SolverBody] = &solver.bodies;
-        for (i, b) in bodies.iter_mut() {
-            if let Some(sb) = sbodies.get(i.index() as usize) {
-                sb.store(b);
-            }
+/// Reads back into the solver's copy what a pass on the bodies changed.
+fn reload_bodies(solver: &mut Solver<'_>, bodies: &Arena<'_, Body>) {
+    let sbodies: &mut [SolverBody] = &mut solver.bodies;
+    for (i, b) in bodies.iter() {
+        if let Some(sb) = sbodies.get_mut(i.index() as usize) {
+            sb.reload(b);
         }
     }
+}
 
-    /// Runs a joint pass on the bodies: the solver's state is written to them
-    /// before and read back after.
-    fn joint_pass(&mut self, f: impl FnOnce(&mut Self)) {
-        self.store_solver_bodies();
-        f(self);
-        let World { bodies, solver, .. } = self;
-        let sbodies: &mut [SolverBody] = &mut solver.bodies;
-        for (i, b) in bodies.iter() {
-            if let Some(sb) = sbodies.get_mut(i.index() as usize) {
-                sb.reload(b);
-            }
-        }
-    }
-
-    /// Runs `f` on every joint with its two bodies, in joint-slot order. A joint
-    /// to a world point gets a static stand-in body for B.
-    fn for_each_joint(&mut self, f: impl FnMut(&mut Joint, &mut SolverBody, &mut SolverBody)) {
-        self.for_each_joint_in(false, f);
-    }
-
-    /// [`World::for_each_joint`] in slot order or in `reverse`.
-    fn for_each_joint_in(
-        &mut self,
-        reverse: bool,
-        mut f: impl FnMut(&mut Joint, &mut SolverBody, &mut SolverBody),
-    ) {
-        let World { joints, solver, .. } = self;
-        let bodies: &mut [SolverBody] = &mut solver.bodies;
-        let used = joints.slots_used();
-        for k in 0..used {
-            let i = if reverse { used.saturating_sub(1).saturating_sub(k) } else { k };
-            let Some(j) = joints.get_at_mut(i) else { continue };
-            let ia = j.def.body_a.index();
-            match j.def.body_b {
-                Some(hb) => {
-                    if let Some((a, b)) = contact::pair_at(bodies, ia, hb.index()) {
-                        f(j, a, b);
-                    }
+/// Runs `f` on every joint with its two solver bodies, in joint-slot order or
+/// in `reverse`. A joint to a world point gets a static stand-in body for B.
+fn for_each_joint(
+    joints: &mut Arena<'_, Joint, JointMarker>,
+    solver: &mut Solver<'_>,
+    reverse: bool,
+    mut f: impl FnMut(&mut Joint, &mut SolverBody, &mut SolverBody),
+) {
+    let bodies: &mut [SolverBody] = &mut solver.bodies;
+    let used = joints.slots_used();
+    for k in 0..used {
+        let i = if reverse { used.saturating_sub(1).saturating_sub(k) } else { k };
+        let Some(j) = joints.get_at_mut(i) else { continue };
+        let ia = j.def.body_a.index();
+        match j.def.body_b {
+            Some(hb) => {
+                if let Some((a, b)) = contact::pair_at(bodies, ia, hb.index()) {
+                    f(j, a, b);
                 }
-                None => {
-                    let mut ground = SolverBody::EMPTY;
-                    if let Some(a) = bodies.get_mut(ia as usize) {
-                        f(j, a, &mut ground);
-                    }
+            }
+            None => {
+                let mut ground = SolverBody::EMPTY;
+                if let Some(a) = bodies.get_mut(ia as usize) {
+                    f(j, a, &mut ground);
                 }
             }
         }
     }
+}
 
-    /// Once per step: joint masses and softness; the game's `prepare`.
-    fn prepare_constraints(&mut self, dt: Scalar, h: Scalar) {
-        let World { bodies, joints, constraints, .. } = self;
-        let ground = crate::constraint::ground();
-        for (_, j) in joints.iter_mut() {
-            let b = j.def.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
-            if let Some(a) = bodies.get(j.def.body_a) {
-                j.prepare(a, b, h);
-            }
-        }
-        for (_, c) in constraints.iter_mut() {
-            let b = c.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
-            if let Some(a) = bodies.get(c.body_a) {
-                c.constraint.prepare(a, b, dt);
-            }
+/// Once per step: joint masses and softness; the game's `prepare`.
+fn prepare_joints(
+    ctx: &StepContext,
+    bodies: &Arena<'_, Body>,
+    joints: &mut Arena<'_, Joint, JointMarker>,
+    constraints: &mut UserConstraints<'_>,
+) {
+    let ground = crate::constraint::ground();
+    for (_, j) in joints.iter_mut() {
+        let b = j.def.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
+        if let Some(a) = bodies.get(j.def.body_a) {
+            j.prepare(a, b, ctx.h);
         }
     }
+    for (_, c) in constraints.iter_mut() {
+        let b = c.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
+        if let Some(a) = bodies.get(c.body_a) {
+            c.constraint.prepare(a, b, ctx.dt);
+        }
+    }
+}
 
-    /// The game's constraints, once per sub-step, in registration order.
-    fn solve_user_constraints(&mut self, h: Scalar) {
-        let World { bodies, constraints, .. } = self;
-        for (_, c) in constraints.iter_mut() {
-            let ia = c.body_a.index();
-            match c.body_b {
-                Some(hb) => {
-                    if let Some((a, b)) = bodies.get2_at_mut(ia, hb.index()) {
-                        c.constraint.solve(a, b, h);
-                    }
+/// The game's constraints, once per sub-step, in registration order.
+fn solve_user_constraints(bodies: &mut Arena<'_, Body>, constraints: &mut UserConstraints<'_>, h: Scalar) {
+    for (_, c) in constraints.iter_mut() {
+        let ia = c.body_a.index();
+        match c.body_b {
+            Some(hb) => {
+                if let Some((a, b)) = bodies.get2_at_mut(ia, hb.index()) {
+                    c.constraint.solve(a, b, h);
                 }
-                None => {
-                    let mut ground = crate::constraint::ground();
-                    if let Some(a) = bodies.get_at_mut(ia) {
-                        c.constraint.solve(a, &mut ground, h);
-                    }
+            }
+            None => {
+                let mut ground = crate::constraint::ground();
+                if let Some(a) = bodies.get_at_mut(ia) {
+                    c.constraint.solve(a, &mut ground, h);
                 }
             }
         }
-    }
-
-    /// The angular speed limit for a step: the configured one, and at most a
-    /// quarter turn per step.
-    pub(crate) fn angular_limit(&self, dt: Scalar) -> Scalar {
-        let quarter_turn = (scalar::FRAC_PI_2 * scalar::HALF).div_or_zero(dt);
-        self.def.max_angular_speed.min(quarter_turn)
     }
 }
 

@@ -1,0 +1,95 @@
+//! [`WorldDef`]: a world's configuration, with a sane default for every option,
+//! and its validation (one function, used by [`World::new`](crate::World::new)
+//! and by `restore`).
+
+use crate::error::Error;
+use crate::limits::{MAX_ANGULAR_SPEED_LIMIT, MAX_COORDINATE, MAX_LINEAR_SPEED_LIMIT, MAX_SUBSTEPS};
+use crate::math::scalar::{Scalar, ZERO};
+use crate::math::{Rect, Vector2};
+
+/// World configuration; every option has a default.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WorldDef {
+    /// The region bodies live in. A body whose centre leaves it is frozen and
+    /// reported (see [`Body::is_out_of_bounds`]).
+    pub bounds: Rect,
+    /// Speed limit for every body, m/s (default 400, at most
+    /// [`MAX_LINEAR_SPEED_LIMIT`]). Applied after forces and after the solver.
+    pub max_linear_speed: Scalar,
+    /// Angular speed limit, rad/s (default 200, at most
+    /// [`MAX_ANGULAR_SPEED_LIMIT`]). The step also limits rotation to π/4 per step.
+    pub max_angular_speed: Scalar,
+    /// Solver sub-steps per step, 1 to [`MAX_SUBSTEPS`] (default 4). More
+    /// sub-steps stack better and cost proportionally more.
+    pub substeps: u32,
+    /// Contact stiffness, Hz (default 30; capped at a quarter of the sub-step rate).
+    pub contact_hertz: Scalar,
+    /// Contact damping ratio (default 10: heavily damped, no bounce from push-out).
+    pub contact_damping_ratio: Scalar,
+    /// Fastest speed at which overlap is pushed out, m/s (default 3).
+    pub contact_push_speed: Scalar,
+    /// Contacts approaching slower than this (m/s) do not bounce (default 1), so
+    /// resting bodies settle instead of jittering.
+    pub restitution_threshold: Scalar,
+    /// Steps an arbiter is kept after its bodies stop touching, counting the step
+    /// they separate (default 3; the manual's persistence).
+    pub arbiter_persistence: u32,
+}
+
+impl WorldDef {
+    /// The manual's world: bounds from (0, 0) to (`width`, `height`) metres.
+    #[must_use]
+    pub fn new(width: Scalar, height: Scalar) -> Self {
+        Self::with_bounds(Rect { min: Vector2::ZERO, max: Vector2::new(width, height) })
+    }
+
+    /// A world with arbitrary bounds (e.g. centred on the origin).
+    #[must_use]
+    pub fn with_bounds(bounds: Rect) -> Self {
+        Self {
+            bounds,
+            max_linear_speed: Scalar::from_int(400),
+            max_angular_speed: Scalar::from_int(200),
+            substeps: 4,
+            contact_hertz: Scalar::from_int(30),
+            contact_damping_ratio: Scalar::from_int(10),
+            contact_push_speed: Scalar::from_int(3),
+            restitution_threshold: Scalar::from_int(1),
+            arbiter_persistence: 3,
+        }
+    }
+
+    pub(crate) fn validate(&self) -> Result<(), Error> {
+        let b = self.bounds;
+        let inside = |v: Scalar| v.abs() <= MAX_COORDINATE;
+        if !(inside(b.min.x) && inside(b.min.y) && inside(b.max.x) && inside(b.max.y)) {
+            return Err(Error::OutOfRange { what: "world bounds" });
+        }
+        if b.min.x >= b.max.x || b.min.y >= b.max.y {
+            return Err(Error::OutOfRange { what: "world size" });
+        }
+        if self.max_linear_speed <= ZERO || self.max_linear_speed > MAX_LINEAR_SPEED_LIMIT {
+            return Err(Error::OutOfRange { what: "max_linear_speed" });
+        }
+        if self.max_angular_speed <= ZERO || self.max_angular_speed > MAX_ANGULAR_SPEED_LIMIT {
+            return Err(Error::OutOfRange { what: "max_angular_speed" });
+        }
+        if self.substeps == 0 || self.substeps > MAX_SUBSTEPS {
+            return Err(Error::OutOfRange { what: "substeps" });
+        }
+        let hundred = Scalar::from_int(100);
+        if self.contact_hertz < ZERO || self.contact_hertz > Scalar::from_int(1000) {
+            return Err(Error::OutOfRange { what: "contact_hertz" });
+        }
+        if self.contact_damping_ratio < ZERO || self.contact_damping_ratio > hundred {
+            return Err(Error::OutOfRange { what: "contact_damping_ratio" });
+        }
+        if self.contact_push_speed < ZERO || self.contact_push_speed > hundred {
+            return Err(Error::OutOfRange { what: "contact_push_speed" });
+        }
+        if self.restitution_threshold < ZERO || self.restitution_threshold > hundred {
+            return Err(Error::OutOfRange { what: "restitution_threshold" });
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,97 @@
+//! The joint and game-constraint API of [`World`].
+
+use crate::body::BodyHandle;
+use crate::constraint::{self, Constraint, ConstraintHandle, Joint, JointDef, JointHandle, UserConstraint};
+use crate::error::Error;
+
+use super::{JointBreakFn, World};
+
+impl<'a> World<'a> {
+    /// Adds a built-in joint (spring, damped spring, rod, rope, pivot, weld).
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`] for an unknown body; [`Error::InvalidOperation`] for a
+    /// joint between a body and itself or between two bodies that cannot move;
+    /// [`Error::OutOfRange`] for a negative stiffness or damping, a zero or huge
+    /// length, inverted angle limits, a negative torque limit or break impulse, or
+    /// an anchor more than 256 m from its body's centre; [`Error::OutsideBounds`]
+    /// for a world anchor outside the world; [`Error::CapacityFull`].
+    pub fn add_joint(&mut self, def: JointDef) -> Result<JointHandle, Error> {
+        let a = self.bodies.get(def.body_a).ok_or(Error::StaleHandle)?;
+        let b = match def.body_b {
+            Some(hb) => Some(self.bodies.get(hb).ok_or(Error::StaleHandle)?),
+            None => None,
+        };
+        constraint::validate(&def, a, b, self.def.bounds)?;
+        let ground = constraint::ground();
+        let joint = Joint::new(def, a, b.unwrap_or(&ground));
+        self.joints.insert(joint).map_err(|_| Error::CapacityFull { what: "joint" })
+    }
+
+    /// Removes a joint and returns it.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn remove_joint(&mut self, h: JointHandle) -> Result<Joint, Error> {
+        self.joints.remove(h).ok_or(Error::StaleHandle)
+    }
+
+    /// The joint behind `h`.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`] (also once a breakable joint broke).
+    pub fn joint(&self, h: JointHandle) -> Result<&Joint, Error> {
+        self.joints.get(h).ok_or(Error::StaleHandle)
+    }
+
+    /// The joint behind `h`, e.g. to change a pivot's motor.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn joint_mut(&mut self, h: JointHandle) -> Result<&mut Joint, Error> {
+        self.joints.get_mut(h).ok_or(Error::StaleHandle)
+    }
+
+    /// Every joint with its handle, in slot order (the order they are solved in).
+    pub fn joints(&self) -> impl Iterator<Item = (JointHandle, &Joint)> + '_ {
+        self.joints.iter()
+    }
+
+    /// Sets the function called after a step for each joint that broke.
+    pub fn set_joint_break_callback(&mut self, f: Option<JointBreakFn>) {
+        self.break_callback = f;
+    }
+
+    /// Adds a game constraint between `a` and `b` (or a fixed point when `b` is
+    /// `None`), borrowed or boxed: `Managed::Borrowed(&mut c)` /
+    /// `Managed::Owned(Box::new(c))`.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`]; [`Error::InvalidOperation`] for a body with itself;
+    /// [`Error::CapacityFull`] when
+    /// [`MAX_USER_CONSTRAINTS`] are in use.
+    pub fn add_constraint(
+        &mut self,
+        a: BodyHandle,
+        b: Option<BodyHandle>,
+        c: managed::Managed<'a, dyn Constraint + Send + 'a>,
+    ) -> Result<ConstraintHandle, Error> {
+        if !self.bodies.contains(a) || b.is_some_and(|b| !self.bodies.contains(b)) {
+            return Err(Error::StaleHandle);
+        }
+        if Some(a) == b {
+            return Err(Error::InvalidOperation { what: "a constraint between a body and itself" });
+        }
+        self.constraints
+            .insert(UserConstraint { body_a: a, body_b: b, constraint: c })
+            .map_err(|_| Error::CapacityFull { what: "constraint" })
+    }
+
+    /// Removes a game constraint.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn remove_constraint(&mut self, h: ConstraintHandle) -> Result<(), Error> {
+        self.constraints.remove(h).map(drop).ok_or(Error::StaleHandle)
+    }
+}
