@@ -7,7 +7,7 @@
 
 use arphysics::constraint::Constraint;
 use arphysics::{
-    Body, BodyDef, GravityForceGenerator, Joint, JointDef, JointHandle, JointKind, Managed, MaxTorque, Motor,
+    Body, BodyDef, GravityForceGenerator, Hook, Joint, JointDef, JointHandle, JointKind, MaxTorque, Motor,
     PolygonPath, Rect, Scalar, Vector2, World, WorldBuffers, WorldDef,
 };
 
@@ -117,7 +117,7 @@ fn main() -> Result<(), arphysics::Error> {
 
     // The game's own constraint: a ball that never sinks below y = 5.
     let floater = world.add_body(BodyDef::circle(s(0.5)).position(v(30.0, 20.0)))?;
-    world.add_constraint(floater, None, Managed::Borrowed(&mut keep))?;
+    world.add_constraint(floater, None, Hook::Borrowed(&mut keep))?;
 
     for step in 1..=240 {
         let report = world.step(s(1.0 / 60.0))?;

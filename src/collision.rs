@@ -8,7 +8,9 @@
 //! the arbiters is a pair whose boxes no longer overlap. No hashing, no search, and
 //! an order that depends only on body slots.
 
-use managed::{Managed, ManagedSlice};
+use managed::ManagedSlice;
+
+use crate::hook::Hook;
 
 use crate::arbiter::{mix_friction, mix_restitution, Arbiter, ArbiterState, ArbiterStore};
 use crate::arena::Arena;
@@ -36,19 +38,19 @@ pub enum Index<'a> {
     /// Sort and sweep on its own scratch.
     SortAndSweep(SortAndSweepIndex<'a>),
     /// A game's own index, borrowed or (with `alloc`) boxed.
-    Custom(Managed<'a, dyn SpatialIndex + Send + 'a>),
+    Custom(Hook<'a, dyn SpatialIndex + Send + 'a>),
 }
 
 impl<'a> Index<'a> {
     /// A game's index, borrowed for the world's lifetime.
     pub fn borrowed(i: &'a mut (dyn SpatialIndex + Send + 'a)) -> Self {
-        Self::Custom(Managed::Borrowed(i))
+        Self::Custom(Hook::Borrowed(i))
     }
 
     /// A game's index, owned by the world.
     #[cfg(feature = "alloc")]
     pub fn boxed(i: alloc::boxed::Box<dyn SpatialIndex + Send + 'a>) -> Self {
-        Self::Custom(Managed::Owned(i))
+        Self::Custom(Hook::Boxed(i))
     }
 }
 

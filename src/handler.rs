@@ -19,7 +19,7 @@
 //! [`CallbackContext`] to remove bodies or make other changes safely afterwards.
 //! Removing a body during a step is impossible by construction.
 
-use managed::Managed;
+use crate::hook::Hook;
 
 use crate::arbiter::Arbiter;
 use crate::arena::Arena;
@@ -115,19 +115,19 @@ pub enum Handler<'a> {
     /// Plain functions.
     Functions(FnHandler),
     /// A game's handler object, borrowed or (with `alloc`) boxed.
-    Custom(Managed<'a, dyn CollisionHandler + Send + 'a>),
+    Custom(Hook<'a, dyn CollisionHandler + Send + 'a>),
 }
 
 impl<'a> Handler<'a> {
     /// A game's handler, borrowed for the world's lifetime.
     pub fn borrowed(h: &'a mut (dyn CollisionHandler + Send + 'a)) -> Self {
-        Self::Custom(Managed::Borrowed(h))
+        Self::Custom(Hook::Borrowed(h))
     }
 
     /// A game's handler, owned by the world.
     #[cfg(feature = "alloc")]
     pub fn boxed(h: alloc::boxed::Box<dyn CollisionHandler + Send + 'a>) -> Self {
-        Self::Custom(Managed::Owned(h))
+        Self::Custom(Hook::Boxed(h))
     }
 
     /// The handler as a trait object.

@@ -131,6 +131,7 @@ pub mod error;
 pub mod force;
 pub mod geometry;
 pub mod handler;
+pub mod hook;
 pub mod index;
 pub mod limits;
 pub mod math;
@@ -154,9 +155,10 @@ pub use force::{
 };
 pub use geometry::{MassData, PolygonPath};
 pub use handler::{CallbackContext, CollisionHandler, FnHandler, Handler, PostStepFn};
+pub use hook::Hook;
 pub use index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};
 pub use limits::MAX_TIME_STEP;
-pub use managed::{Managed, ManagedSlice};
+pub use managed::ManagedSlice;
 pub use math::{Matrix22, Rect, Rot, Scalar, Transform, Vector2};
 pub use query::{QueryFilter, QueryShape, RayHit};
 pub use world::{

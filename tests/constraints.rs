@@ -320,7 +320,7 @@ fn a_user_constraint_keeps_a_body_above_a_line() {
         let mut w2 = World::with_capacities(*w.def(), Capacities::for_bodies(4)).expect("w");
         let b2 = w2.add_body(BodyDef::circle(s(0.5)).position(v(0.0, 10.0))).expect("b");
         w2.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0))).expect("g");
-        w2.add_constraint(b2, None, managed::Managed::Borrowed(&mut keep)).expect("c");
+        w2.add_constraint(b2, None, arphysics::Hook::Borrowed(&mut keep)).expect("c");
         for _ in 0..180 {
             w2.step(s(DT)).expect("step");
         }

@@ -18,9 +18,9 @@ use arphysics::query::{QueryFilter, QueryShape, RayHit};
 use arphysics::{
     Arbiter, Body, BodyDef, BodyHandle, BodyType, CallbackContext, Capacities, ConstraintHandle, Error,
     FnHandler, ForceGenerator, Generator, GeneratorHandle, GravityForceGenerator,
-    GravityToPointForceGenerator, Handle, Handler, Index, Joint, JointDef, JointHandle, JointKind,
-    LinearForceGenerator, Managed, MaxTorque, Motor, PairSink, PathHandle, PolygonPath, Proxy, Rect, Rot,
-    Scalar, SpatialIndex, Storage, Transform, Vector2, World, WorldDef,
+    GravityToPointForceGenerator, Handle, Handler, Hook, Index, Joint, JointDef, JointHandle, JointKind,
+    LinearForceGenerator, MaxTorque, Motor, PairSink, PathHandle, PolygonPath, Proxy, Rect, Rot, Scalar,
+    SpatialIndex, Storage, Transform, Vector2, World, WorldDef,
 };
 
 /// Most ops a run executes (keeps one input's run short).
@@ -1395,7 +1395,7 @@ impl<'w> Runner<'w> {
                 let r = self.world.add_constraint(
                     body(&c.body_a, self),
                     c.body_b.map(|b| body(&b, self)),
-                    Managed::Owned(Box::new(user)),
+                    Hook::Boxed(Box::new(user)),
                 );
                 if let Ok(h) = r {
                     self.constraints.push(h);

@@ -35,7 +35,7 @@ mod rod;
 mod spring;
 mod weld;
 
-use managed::Managed;
+use crate::hook::Hook;
 
 use crate::arena::Handle;
 use crate::body::{Body, BodyHandle};
@@ -493,7 +493,7 @@ pub(crate) fn apply_angular(j: &Joint, a: &mut SolverBody, b: &mut SolverBody, l
 pub(crate) struct UserConstraint<'a> {
     pub(crate) body_a: BodyHandle,
     pub(crate) body_b: Option<BodyHandle>,
-    pub(crate) constraint: Managed<'a, dyn Constraint + Send + 'a>,
+    pub(crate) constraint: Hook<'a, dyn Constraint + Send + 'a>,
 }
 
 /// A world's game constraints, in registration order (slot order).

@@ -18,7 +18,7 @@ pub use gravity::GravityForceGenerator;
 pub use gravity_to_point::GravityToPointForceGenerator;
 pub use linear::LinearForceGenerator;
 
-use managed::Managed;
+use crate::hook::Hook;
 
 use crate::arena::{Arena, Handle, Slot};
 use crate::step::StepContext;
@@ -126,19 +126,19 @@ pub enum Generator<'a> {
     /// Attraction to a point.
     GravityToPoint(GravityToPointForceGenerator),
     /// A game's own generator.
-    Custom(Managed<'a, dyn ForceGenerator + Send + 'a>),
+    Custom(Hook<'a, dyn ForceGenerator + Send + 'a>),
 }
 
 impl<'a> Generator<'a> {
     /// A game's generator, borrowed for the world's lifetime.
     pub fn borrowed(g: &'a mut (dyn ForceGenerator + Send + 'a)) -> Self {
-        Self::Custom(Managed::Borrowed(g))
+        Self::Custom(Hook::Borrowed(g))
     }
 
     /// A game's generator, owned by the world.
     #[cfg(feature = "alloc")]
     pub fn boxed(g: alloc::boxed::Box<dyn ForceGenerator + Send + 'a>) -> Self {
-        Self::Custom(Managed::Owned(g))
+        Self::Custom(Hook::Boxed(g))
     }
 
     /// The generator as a trait object.

@@ -3,6 +3,7 @@
 use crate::body::BodyHandle;
 use crate::constraint::{self, Constraint, ConstraintHandle, Joint, JointDef, JointHandle, UserConstraint};
 use crate::error::Error;
+use crate::hook::Hook;
 
 use super::{JointBreakFn, World};
 
@@ -63,8 +64,8 @@ impl<'a> World<'a> {
     }
 
     /// Adds a game constraint between `a` and `b` (or a fixed point when `b` is
-    /// `None`), borrowed or boxed: `Managed::Borrowed(&mut c)` /
-    /// `Managed::Owned(Box::new(c))`.
+    /// `None`), borrowed or boxed: `Hook::Borrowed(&mut c)` /
+    /// `Hook::Boxed(Box::new(c))` (see [`Hook`]).
     ///
     /// # Errors
     /// [`Error::StaleHandle`]; [`Error::InvalidOperation`] for a body with itself;
@@ -74,7 +75,7 @@ impl<'a> World<'a> {
         &mut self,
         a: BodyHandle,
         b: Option<BodyHandle>,
-        c: managed::Managed<'a, dyn Constraint + Send + 'a>,
+        c: Hook<'a, dyn Constraint + Send + 'a>,
     ) -> Result<ConstraintHandle, Error> {
         if !self.bodies.contains(a) || b.is_some_and(|b| !self.bodies.contains(b)) {
             return Err(Error::StaleHandle);
