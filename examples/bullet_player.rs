@@ -14,34 +14,26 @@ use arphysics::{
 const PLAYER_LEVEL: u32 = 1;
 const BULLET_LEVEL: u32 = 2;
 
-/// The game's side: which bullet hit which player. A real game keeps this in its
-/// own entity store and puts an entity id in each body's user data; here a player's
-/// user data holds the bullet that hit it, so the key is all the callback needs.
-fn key_of(player: BodyHandle) -> u64 {
-    (u64::from(player.index()) << 32) | u64::from(player.generation())
-}
-
-fn player_of(key: u64) -> BodyHandle {
-    BodyHandle::from_parts((key >> 32) as u32, key as u32)
-}
-
 fn bullet_hit(arbiter: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
     // Which body is the player and which the bullet, from their levels.
     let Some((player, bullet)) = arbiter.bodies_by_level(PLAYER_LEVEL) else { return true };
     println!("player {player:?} hit by bullet {bullet:?}");
-    // Remove them after the step; the key is the player.
-    if let Err(e) = ctx.add_post_step_callback(remove_dead_player, key_of(player)) {
+    // Remove them after the step; the key is the player's handle as bits.
+    if let Err(e) = ctx.add_post_step_callback(remove_dead_player, player.to_bits()) {
         eprintln!("could not schedule the removal: {e}");
     }
     // No point resolving a collision whose bodies are about to go.
     false
 }
 
+/// The game's side: which bullet hit which player. A real game keeps this in its
+/// own entity store and puts an entity id in each body's user data; here a player's
+/// user data holds the bullet that hit it (`to_bits`), so the key is all the
+/// callback needs. A key whose player has gone since decodes to a stale handle:
+/// the world answers `StaleHandle` and nothing is removed.
 fn remove_dead_player(world: &mut World<'_>, key: u64) {
-    let player = player_of(key);
-    let bullet = world
-        .body(player)
-        .map(|b| BodyHandle::from_parts((b.user_data() >> 32) as u32, b.user_data() as u32));
+    let player = BodyHandle::from_bits(key);
+    let bullet = world.body(player).map(|b| BodyHandle::from_bits(b.user_data()));
     let removed_player = world.remove_body(player).is_ok();
     let removed_bullet = bullet.map(|b| world.remove_body(b).is_ok()).unwrap_or(false);
     println!("post-step: removed player {removed_player}, bullet {removed_bullet}");
@@ -68,7 +60,7 @@ fn main() -> Result<(), arphysics::Error> {
             .collision_level(BULLET_LEVEL),
     )?;
     // The game remembers which bullet is flying at the player.
-    world.body_mut(player)?.set_user_data(key_of(bullet));
+    world.body_mut(player)?.set_user_data(bullet.to_bits());
 
     for step in 1..=30 {
         let report = world.step(s(1.0 / 60.0))?;

@@ -96,6 +96,34 @@ impl<T> Handle<T> {
         Self { index, generation, marker: PhantomData }
     }
 
+    /// Packs the handle into one `u64`, for a post-step callback key or a user-data
+    /// word: the slot index in the high 32 bits, the generation in the low 32
+    /// (`index << 32 | generation`). The packing is lossless and fixed, so
+    /// `Handle::from_bits(h.to_bits()) == h` for every handle, and
+    /// [`Handle::NULL`] packs to `0`. Packed handles compare as `u64`s in the
+    /// handles' canonical order (index, then generation).
+    #[inline]
+    #[must_use]
+    pub const fn to_bits(self) -> u64 {
+        ((self.index as u64) << 32) | self.generation as u64
+    }
+
+    /// Unpacks a handle packed by [`Handle::to_bits`] (index in the high 32 bits,
+    /// generation in the low 32); `0` gives [`Handle::NULL`].
+    ///
+    /// Every `u64` decodes, and what it decodes to is just a handle, like one
+    /// from [`Handle::from_parts`]: if it names no live object (made-up bits, or
+    /// an object removed since it was packed), the arena resolves it to `None`
+    /// and the world answers [`Error::StaleHandle`], never a panic and never
+    /// another object.
+    ///
+    /// [`Error::StaleHandle`]: crate::Error::StaleHandle
+    #[inline]
+    #[must_use]
+    pub const fn from_bits(bits: u64) -> Self {
+        Self::from_parts((bits >> 32) as u32, bits as u32)
+    }
+
     /// True for [`Handle::NULL`].
     #[inline]
     #[must_use]
@@ -469,6 +497,62 @@ mod tests {
         assert_eq!(a.remove(old), None);
         assert_eq!(a.get(new), Some(&20));
         assert_eq!(a.get(Handle::NULL), None);
+    }
+
+    #[test]
+    fn a_handle_survives_packing_into_bits() {
+        let edges = [0, 1, 2, 0x8000_0000, u32::MAX - 1, u32::MAX];
+        for index in edges {
+            for generation in edges {
+                let h: Handle<u8> = Handle::from_parts(index, generation);
+                let bits = h.to_bits();
+                assert_eq!(bits >> 32, u64::from(index), "index in the high word");
+                assert_eq!(bits & u64::from(u32::MAX), u64::from(generation), "generation in the low word");
+                assert_eq!(Handle::<u8>::from_bits(bits), h);
+            }
+        }
+        assert_eq!(Handle::<u8>::from_bits(u64::MAX), Handle::from_parts(u32::MAX, u32::MAX));
+    }
+
+    #[test]
+    fn the_null_handle_packs_to_zero_and_back() {
+        assert_eq!(Handle::<u8>::NULL.to_bits(), 0);
+        let back = Handle::<u8>::from_bits(0);
+        assert_eq!(back, Handle::NULL);
+        assert!(back.is_null());
+    }
+
+    #[test]
+    fn a_live_handle_still_resolves_after_a_round_trip_through_bits() {
+        let mut storage = [Slot::EMPTY; 4];
+        let mut a: Arena<'_, u8> = Arena::new(&mut storage[..]);
+        let _first = a.insert(1).expect("room");
+        let h = a.insert(2).expect("room");
+        assert_eq!(a.get(Handle::from_bits(h.to_bits())), Some(&2));
+    }
+
+    #[test]
+    fn a_stale_decoded_handle_is_rejected_by_the_arena() {
+        let mut storage = [Slot::EMPTY; 4];
+        let mut a: Arena<'_, u8> = Arena::new(&mut storage[..]);
+        let old = a.insert(10).expect("room");
+        let key = old.to_bits();
+        assert_eq!(a.remove(old), Some(10));
+        let new = a.insert(20).expect("room");
+        assert_eq!(new.index(), old.index(), "the freed slot is reused");
+        // The key outlived its object: it decodes, but names nothing.
+        let decoded = Handle::from_bits(key);
+        assert_eq!(a.get(decoded), None);
+        assert_eq!(a.get_mut(decoded), None);
+        assert!(!a.contains(decoded));
+        assert_eq!(a.remove(decoded), None);
+        assert_eq!(a.get(new), Some(&20), "the new occupant is untouched");
+        // Made-up bits: a slot never used, a slot past the end, all ones.
+        for bits in [2 << 32 | 1, 100 << 32 | 1, u64::MAX, u64::from(u32::MAX)] {
+            assert_eq!(a.get(Handle::from_bits(bits)), None, "bits {bits:#x}");
+            assert_eq!(a.remove(Handle::from_bits(bits)), None, "bits {bits:#x}");
+        }
+        assert_eq!(a.len(), 1);
     }
 
     #[test]

@@ -311,8 +311,7 @@ fn the_handler_table_is_bounded_and_rejects_duplicates() {
 
 fn count_post_step(w: &mut World<'_>, key: u64) {
     // Remove the body named by the key: safe here, after the step.
-    let h = BodyHandle::from_parts((key >> 32) as u32, key as u32);
-    let _ = w.remove_body(h);
+    let _ = w.remove_body(BodyHandle::from_bits(key));
 }
 
 fn schedule_many(_: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
@@ -351,8 +350,7 @@ fn removing_a_body_in_a_post_step_callback_ends_its_arbiters() {
         w.step(s(DT)).expect("step");
     }
     assert!(w.arbiter(ball, floor).is_some());
-    let key = (u64::from(ball.index()) << 32) | u64::from(ball.generation());
-    count_post_step(&mut w, key);
+    count_post_step(&mut w, ball.to_bits());
     assert!(w.body(ball).is_err());
     assert!(w.arbiters().next().is_none(), "its arbiter went with it");
     let events = log.lock().expect("log").clone();

@@ -789,26 +789,17 @@ fn note<T>(r: Result<T, Error>) -> Result<T, Error> {
     r
 }
 
-/// Packs a handle into a post-step callback key.
-fn key_of(h: BodyHandle) -> u64 {
-    (u64::from(h.index()) << 32) | u64::from(h.generation())
-}
-
-fn handle_of(key: u64) -> BodyHandle {
-    Handle::from_parts((key >> 32) as u32, key as u32)
-}
-
 fn post_remove(w: &mut World<'_>, key: u64) {
-    let _ = w.remove_body(handle_of(key));
+    let _ = w.remove_body(BodyHandle::from_bits(key));
 }
 
 fn post_make_static(w: &mut World<'_>, key: u64) {
-    let _ = w.set_static(handle_of(key));
+    let _ = w.set_static(BodyHandle::from_bits(key));
 }
 
 fn post_teleport_to_centre(w: &mut World<'_>, key: u64) {
     let c = w.bounds().center();
-    let _ = w.set_position(handle_of(key), c);
+    let _ = w.set_position(BodyHandle::from_bits(key), c);
 }
 
 fn post_add_circle(w: &mut World<'_>, key: u64) {
@@ -817,7 +808,7 @@ fn post_add_circle(w: &mut World<'_>, key: u64) {
 }
 
 fn post_spin(w: &mut World<'_>, key: u64) {
-    if let Ok(b) = w.body_mut(handle_of(key)) {
+    if let Ok(b) = w.body_mut(BodyHandle::from_bits(key)) {
         b.set_angular_velocity(Scalar::MAX);
         b.set_linear_velocity(Vector2::new(Scalar::MIN, Scalar::MAX));
     }
@@ -833,11 +824,11 @@ fn begin_fn(i: u8) -> fn(&mut Arbiter, &mut CallbackContext<'_>) -> bool {
         1 => |_, _| false,
         2 => |a, _| parity(a),
         3 => |a, ctx| {
-            let _ = ctx.add_post_step_callback(post_remove, key_of(a.body_a()));
+            let _ = ctx.add_post_step_callback(post_remove, a.body_a().to_bits());
             true
         },
         _ => |a, ctx| {
-            let _ = ctx.add_post_step_callback(post_add_circle, key_of(a.body_b()));
+            let _ = ctx.add_post_step_callback(post_add_circle, a.body_b().to_bits());
             !parity(a)
         },
     }
@@ -877,12 +868,12 @@ fn pre_solve_fn(i: u8) -> fn(&mut Arbiter, &mut CallbackContext<'_>) -> bool {
             h & 1 == 0
         },
         6 => |a, ctx| {
-            let _ = ctx.add_post_step_callback(post_teleport_to_centre, key_of(a.body_b()));
+            let _ = ctx.add_post_step_callback(post_teleport_to_centre, a.body_b().to_bits());
             true
         },
         _ => |a, ctx| {
-            let _ = ctx.add_post_step_callback(post_spin, key_of(a.body_a()));
-            let _ = ctx.add_post_step_callback(post_make_static, key_of(a.body_b()));
+            let _ = ctx.add_post_step_callback(post_spin, a.body_a().to_bits());
+            let _ = ctx.add_post_step_callback(post_make_static, a.body_b().to_bits());
             true
         },
     }
@@ -893,13 +884,13 @@ fn post_solve_fn(i: u8) -> fn(&Arbiter, &mut CallbackContext<'_>) {
         0 => |_, _| {},
         1 => |a, ctx| {
             if a.total_normal_impulse() > Scalar::ONE {
-                let _ = ctx.add_post_step_callback(post_remove, key_of(a.body_b()));
+                let _ = ctx.add_post_step_callback(post_remove, a.body_b().to_bits());
             }
         },
         _ => |a, ctx| {
             // Many keys: fills the post-step queue.
             for k in 0..80u64 {
-                let _ = ctx.add_post_step_callback(post_spin, key_of(a.body_a()).wrapping_add(k << 40));
+                let _ = ctx.add_post_step_callback(post_spin, a.body_a().to_bits().wrapping_add(k << 40));
             }
         },
     }
@@ -909,10 +900,10 @@ fn end_fn(i: u8) -> fn(&Arbiter, &mut CallbackContext<'_>) {
     match i % 3 {
         0 => |_, _| {},
         1 => |a, ctx| {
-            let _ = ctx.add_post_step_callback(post_remove, key_of(a.body_b()));
+            let _ = ctx.add_post_step_callback(post_remove, a.body_b().to_bits());
         },
         _ => |a, ctx| {
-            let _ = ctx.add_post_step_callback(post_add_circle, key_of(a.body_a()));
+            let _ = ctx.add_post_step_callback(post_add_circle, a.body_a().to_bits());
         },
     }
 }
@@ -1133,7 +1124,7 @@ fn summarise_handles(count: usize, out: &[BodyHandle]) -> u64 {
     let mut s = Summary::default();
     s.add(count as u64);
     for h in out.iter().take(count) {
-        s.add(u64::from(h.index()) << 32 | u64::from(h.generation()));
+        s.add(h.to_bits());
     }
     s.0
 }

@@ -230,27 +230,19 @@ fn frictionless(a: &mut Arbiter, _: &mut CallbackContext<'_>) -> bool {
     true
 }
 
-fn key_of(h: BodyHandle) -> u64 {
-    (u64::from(h.index()) << 32) | u64::from(h.generation())
-}
-
-fn handle_of(key: u64) -> BodyHandle {
-    BodyHandle::from_parts((key >> 32) as u32, key as u32)
-}
-
 /// `begin` of (BOMB, CRATE): schedule the crate's removal, resolve the hit.
 fn bomb_hits_crate(a: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
     if let Some((crate_body, _bomb)) = a.bodies_by_level(CRATE) {
         // Capacity cannot run out with two crates; if it did, the scene's own
         // checks (the crates are gone) fail.
-        let _ = ctx.add_post_step_callback(remove_crate, key_of(crate_body));
+        let _ = ctx.add_post_step_callback(remove_crate, crate_body.to_bits());
     }
     true
 }
 
 /// Post-step: removes the crate (and with it the rod that holds it).
 fn remove_crate(world: &mut World<'_>, key: u64) {
-    let _ = world.remove_body(handle_of(key));
+    let _ = world.remove_body(BodyHandle::from_bits(key));
 }
 
 /// Joint break callback: the freed body gets a spin.
