@@ -52,13 +52,17 @@
 //! The loops run over two dense arrays built once per step (see [`contact`]):
 //! a [`SolverBody`] per body slot and a [`ContactConstraint`] per solved arbiter.
 
+mod body;
 mod contact;
+mod softness;
 
-pub use contact::{ContactConstraint, SolverBody};
+pub use body::SolverBody;
+pub use contact::ContactConstraint;
 
-pub(crate) use contact::inverse_mass;
+pub(crate) use body::inverse_mass;
 use contact::StepParams;
 use managed::ManagedSlice;
+pub(crate) use softness::Softness;
 
 use crate::constraint::Joint;
 use crate::math::scalar::{self, Scalar, ZERO};
@@ -83,28 +87,6 @@ fn warm_start_reverse(substep: u32) -> bool {
 /// that neither end of the constraint list is always solved first).
 fn sweep_reverse(substep: u32) -> bool {
     (substep.saturating_add(1) / 2) % 2 == 1
-}
-
-/// Soft-constraint coefficients for one sub-step length (Box2D's `b2Softness`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Softness {
-    pub(crate) bias_rate: Scalar,
-    pub(crate) mass_scale: Scalar,
-    pub(crate) impulse_scale: Scalar,
-}
-
-impl Softness {
-    /// A spring of `hertz` and damping ratio `zeta`, discretised for sub-step `h`.
-    pub(crate) fn new(hertz: Scalar, zeta: Scalar, h: Scalar) -> Self {
-        if hertz == ZERO {
-            return Self { bias_rate: ZERO, mass_scale: scalar::ONE, impulse_scale: ZERO };
-        }
-        let omega = scalar::TAU * hertz;
-        let a1 = (zeta * scalar::TWO) + (h * omega);
-        let a2 = h * omega * a1;
-        let a3 = (scalar::ONE + a2).recip();
-        Self { bias_rate: omega.div_or_zero(a1), mass_scale: a2 * a3, impulse_scale: a3 }
-    }
 }
 
 impl World<'_> {
@@ -253,7 +235,7 @@ impl World<'_> {
             let ia = j.def.body_a.index();
             match j.def.body_b {
                 Some(hb) => {
-                    if let Some((a, b)) = contact::pair_at(bodies, ia, hb.index()) {
+                    if let Some((a, b)) = body::pair_at(bodies, ia, hb.index()) {
                         f(j, a, b);
                     }
                 }
