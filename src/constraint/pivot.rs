@@ -1,6 +1,7 @@
 //! Pivot (revolute) joint: a point constraint, optional angle limits, optional motor.
 
-use super::{anchors, apply_angular, apply_linear, Joint, MaxTorque, Motor};
+use super::maths::{anchors, apply_angular, apply_linear};
+use super::{Joint, MaxTorque, Motor};
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::Vector2;
 use crate::solver::SolverBody;

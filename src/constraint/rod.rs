@@ -1,6 +1,7 @@
 //! Rod (fixed distance) and rope (maximum distance) between the anchors.
 
-use super::{anchors, apply_linear, Joint};
+use super::maths::{anchors, apply_linear};
+use super::Joint;
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::solver::SolverBody;
 

@@ -1,7 +1,8 @@
 //! Weld joint: the pivot's point constraint plus a fixed relative angle.
 
+use super::maths::{anchors, apply_angular, apply_linear};
 use super::pivot::{relative_angle, solve_point};
-use super::{anchors, apply_angular, apply_linear, Joint};
+use super::Joint;
 use crate::math::scalar::{self, ZERO};
 use crate::solver::SolverBody;
 
