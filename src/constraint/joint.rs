@@ -8,9 +8,10 @@ use crate::body::Body;
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::Matrix22;
 use crate::math::{Rot, Vector2};
-use crate::solver::SolverBody;
+use crate::solver::{Bias, Softness, SolverBody};
 
 use super::maths::point_mass_inverse;
+use super::rod::Distance;
 use super::{pivot, rod, spring, weld, JointDef, JointKind, Motor};
 
 /// Stiffness of the soft position correction of rods, ropes, pivots and welds, Hz
@@ -92,7 +93,7 @@ impl Joint {
             limit_impulse: ZERO,
             step_linear: Vector2::ZERO,
             broken: false,
-            soft: crate::solver::Softness::new(ZERO, ZERO, ZERO),
+            soft: Softness::RIGID,
             inv_mass: [ZERO; 2],
             inv_inertia: [ZERO; 2],
             axial_mass: ZERO,
@@ -117,9 +118,8 @@ impl Joint {
         } else {
             None
         };
-        const QUARTER: Scalar = Scalar::lit("0.25");
-        let hertz = JOINT_HERTZ.min(h.recip() * QUARTER);
-        self.soft = crate::solver::Softness::new(hertz, JOINT_DAMPING_RATIO, h);
+        let hertz = JOINT_HERTZ.min(Softness::max_hertz(h.recip()));
+        self.soft = Softness::new(hertz, JOINT_DAMPING_RATIO, h);
         self.step_linear = Vector2::ZERO;
     }
 
@@ -139,23 +139,24 @@ impl Joint {
         }
     }
 
-    /// One iteration. `use_bias` is false in the relax sweep.
-    pub(crate) fn solve(&mut self, a: &mut SolverBody, b: &mut SolverBody, h: Scalar, use_bias: bool) {
+    /// One iteration: with `Bias::On` in the biased sweep of each sub-step
+    /// (springs apply their force only then), `Bias::Off` in the relax sweep.
+    pub(crate) fn solve(&mut self, a: &mut SolverBody, b: &mut SolverBody, h: Scalar, bias: Bias) {
         match self.def.kind {
             JointKind::Spring { stiffness, rest_length } => {
-                if use_bias {
+                if bias == Bias::On {
                     spring::apply(self, a, b, stiffness, ZERO, rest_length, h);
                 }
             }
             JointKind::DampedSpring { stiffness, damping, rest_length } => {
-                if use_bias {
+                if bias == Bias::On {
                     spring::apply(self, a, b, stiffness, damping, rest_length, h);
                 }
             }
-            JointKind::Rod { length } => rod::solve(self, a, b, length, false, h, use_bias),
-            JointKind::Rope { max_length } => rod::solve(self, a, b, max_length, true, h, use_bias),
-            JointKind::Pivot { limits, motor } => pivot::solve(self, a, b, limits, motor, h, use_bias),
-            JointKind::Weld => weld::solve(self, a, b, h, use_bias),
+            JointKind::Rod { length } => rod::solve(self, a, b, length, Distance::Exact, h, bias),
+            JointKind::Rope { max_length } => rod::solve(self, a, b, max_length, Distance::AtMost, h, bias),
+            JointKind::Pivot { limits, motor } => pivot::solve(self, a, b, limits, motor, h, bias),
+            JointKind::Weld => weld::solve(self, a, b, h, bias),
         }
     }
 }

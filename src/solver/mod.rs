@@ -55,14 +55,16 @@
 mod body;
 mod contact;
 mod softness;
+mod sweep;
 
 pub use body::SolverBody;
 pub use contact::ContactConstraint;
 
 pub(crate) use body::inverse_mass;
-use contact::StepParams;
+use contact::{Carried, StepParams};
 use managed::ManagedSlice;
-pub(crate) use softness::Softness;
+pub(crate) use softness::{Row, Softness};
+pub(crate) use sweep::{Bias, Sweep};
 
 use crate::constraint::Joint;
 use crate::math::scalar::{self, Scalar, ZERO};
@@ -75,18 +77,22 @@ use crate::world::World;
 /// only adds each constraint's own fixed impulses to its bodies' velocities,
 /// and fixed-point sums are exact, so the order changes no result (short of a
 /// velocity saturating).
-fn warm_start_reverse(substep: u32) -> bool {
+fn warm_start_direction(substep: u32) -> Sweep {
     match substep.checked_sub(1) {
-        None => true,
-        Some(previous) => !sweep_reverse(previous),
+        None => Sweep::Reverse,
+        Some(previous) => sweep_direction(previous).reversed(),
     }
 }
 
-/// Whether sub-step `substep`'s sweeps run in reverse: forward, reverse,
-/// reverse, forward, forward, reverse, … (each direction twice in a row, so
-/// that neither end of the constraint list is always solved first).
-fn sweep_reverse(substep: u32) -> bool {
-    (substep.saturating_add(1) / 2) % 2 == 1
+/// The direction of sub-step `substep`'s sweeps: forward, reverse, reverse,
+/// forward, forward, reverse, … (each direction twice in a row, so that
+/// neither end of the constraint list is always solved first).
+fn sweep_direction(substep: u32) -> Sweep {
+    if (substep.saturating_add(1) / 2) % 2 == 1 {
+        Sweep::Reverse
+    } else {
+        Sweep::Forward
+    }
 }
 
 impl World<'_> {
@@ -113,7 +119,7 @@ impl World<'_> {
         let user = !self.constraints.is_empty();
         let (vmax, wmax) = (self.def.max_linear_speed, self.angular_limit(dt));
         for substep in 0..n {
-            let reverse = sweep_reverse(substep);
+            let sweep = sweep_direction(substep);
             let (bodies, _) = self.solver.split();
             for sb in bodies.iter_mut().filter(|sb| sb.forced) {
                 sb.v += sb.pending_v;
@@ -121,13 +127,18 @@ impl World<'_> {
             }
             self.for_each_joint(|j, a, b| j.warm_start(a, b));
             let (bodies, constraints) = self.solver.split();
-            contact::warm_start(bodies, constraints, warm_start_reverse(substep), substep > 0);
-            self.for_each_joint(|j, a, b| j.solve(a, b, h, true));
+            contact::warm_start(
+                bodies,
+                constraints,
+                warm_start_direction(substep),
+                Carried::for_substep(substep),
+            );
+            self.for_each_joint(|j, a, b| j.solve(a, b, h, Bias::On));
             if user {
                 self.joint_pass(|w| w.solve_user_constraints(h));
             }
             let (bodies, constraints) = self.solver.split();
-            contact::solve(bodies, constraints, &params, true, reverse, reverse);
+            contact::solve(bodies, constraints, &params, Bias::On, sweep);
             for sb in bodies.iter_mut().filter(|sb| sb.moves) {
                 // Component clamps are cheap and bound the displacement; the
                 // exact speed limit is applied once at the end of the step.
@@ -142,11 +153,11 @@ impl World<'_> {
             // Relax: one sweep in the sub-step's direction; the last sub-step
             // adds a forward sweep, which drains what the push-out left in the
             // velocities the step ends with.
-            self.for_each_joint_in(true, |j, a, b| j.solve(a, b, h, false));
+            self.for_each_joint_in(true, |j, a, b| j.solve(a, b, h, Bias::Off));
             let (bodies, constraints) = self.solver.split();
-            contact::solve(bodies, constraints, &params, false, reverse, reverse);
+            contact::solve(bodies, constraints, &params, Bias::Off, sweep);
             if substep + 1 == n {
-                contact::solve(bodies, constraints, &params, false, false, false);
+                contact::solve(bodies, constraints, &params, Bias::Off, Sweep::Forward);
             }
         }
         let threshold = self.def.restitution_threshold;

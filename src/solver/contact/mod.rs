@@ -28,4 +28,4 @@ mod solve;
 pub use prepare::ContactConstraint;
 pub(crate) use prepare::{prepare, StepParams};
 pub(crate) use restitution::restitute_and_store;
-pub(crate) use solve::{solve, warm_start};
+pub(crate) use solve::{solve, warm_start, Carried};

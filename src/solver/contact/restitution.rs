@@ -3,10 +3,10 @@
 
 use crate::arbiter::Arbiter;
 use crate::math::scalar::{Scalar, ZERO};
-use crate::solver::SolverBody;
+use crate::solver::{SolverBody, Sweep};
 
 use super::prepare::ContactConstraint;
-use super::solve::{apply_along, relative_speed, set_normal, visit_all, with_pair};
+use super::solve::{apply_along, relative_speed, set_normal, visit_all, with_pair, Prefetch};
 
 /// The restitution pass, iterated: one Gauss-Seidel pass over a two-point
 /// manifold leaves the first point bouncing faster than the second (the second
@@ -23,7 +23,7 @@ pub(crate) fn restitute_and_store(
     arbiters: &mut [Arbiter],
     threshold: Scalar,
 ) {
-    visit_all(constraints, false, true, |c| {
+    visit_all(constraints, Sweep::Forward, Prefetch::Whole, |c| {
         let Some(arb) = arbiters.get_mut(arbiter_index(c)) else { return };
         let e = arb.restitution;
         if e != ZERO {

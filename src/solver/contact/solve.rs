@@ -1,9 +1,9 @@
 //! The contact stages of each sub-step: the warm start and the sweeps, with
 //! both points of a two-point manifold solved together as a 2×2 block.
 
-use crate::math::scalar::{self, Scalar, ZERO};
+use crate::math::scalar::{Scalar, ZERO};
 use crate::math::Vector2;
-use crate::solver::SolverBody;
+use crate::solver::{Bias, Row, SolverBody, Sweep};
 
 use super::prepare::{
     inverse_from_diagonal_inverses, ContactConstraint, PointConstraint, PointImpulse, StepParams,
@@ -40,18 +40,41 @@ pub(super) fn with_pair(
     }
 }
 
+/// Where the impulses a warm start applies again come from, which decides
+/// whether they count towards the step's totals.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Carried {
+    /// The impulses the previous step ended with (the first sub-step): already
+    /// in that step's totals.
+    FromPreviousStep,
+    /// The impulses the previous sub-step of this step ended with: added to
+    /// the step's totals now.
+    FromPreviousSubstep,
+}
+
+impl Carried {
+    /// What sub-step `substep` (from 0) warm-starts from.
+    pub(crate) fn for_substep(substep: u32) -> Self {
+        if substep == 0 {
+            Carried::FromPreviousStep
+        } else {
+            Carried::FromPreviousSubstep
+        }
+    }
+}
+
 /// Applies the previous sub-step's impulses again: all points' impulses summed
-/// into one linear and one angular change per body. After the first sub-step,
-/// `total` also adds them to the step's totals: they are what the sub-step
-/// before ended with.
+/// into one linear and one angular change per body. After the first sub-step
+/// ([`Carried::FromPreviousSubstep`]) it also adds them to the step's totals:
+/// they are what the sub-step before ended with.
 pub(crate) fn warm_start(
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
-    reverse: bool,
-    total: bool,
+    sweep: Sweep,
+    carried: Carried,
 ) {
-    visit_all(constraints, reverse, false, |c| {
-        with_pair(bodies, c, |c, a, b| warm_start_one(c, a, b, total))
+    visit_all(constraints, sweep, Prefetch::WarmStart, |c| {
+        with_pair(bodies, c, |c, a, b| warm_start_one(c, a, b, carried))
     });
 }
 
@@ -60,27 +83,37 @@ pub(crate) fn warm_start(
 /// warm starting alone) 32 no more.
 const AHEAD: usize = 8;
 
-/// Runs `f` on every constraint, in order or in `reverse`, first reading one
+/// Which cache lines of a constraint ahead [`visit_all`] reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Prefetch {
+    /// Only the lines warm starting reads (the first three).
+    WarmStart,
+    /// Every line: the sweeps and the restitution pass read the whole record.
+    Whole,
+}
+
+/// Runs `f` on every constraint in the `sweep`'s direction, first reading one
 /// value from each cache line of the constraint [`AHEAD`] places further on
-/// (only the lines warm starting reads unless `whole`), so that the memory
-/// system is already fetching it: in a scene whose constraints do not fit in
-/// cache each pass streams them from memory, and the processor's own prefetch
-/// does not look far enough ahead at this stride.
+/// that `prefetch` names, so that the memory system is already fetching it: in
+/// a scene whose constraints do not fit in cache each pass streams them from
+/// memory, and the processor's own prefetch does not look far enough ahead at
+/// this stride.
 #[inline(always)]
 pub(super) fn visit_all(
     constraints: &mut [ContactConstraint],
-    reverse: bool,
-    whole: bool,
+    sweep: Sweep,
+    prefetch: Prefetch,
     mut f: impl FnMut(&mut ContactConstraint),
 ) {
     let n = constraints.len();
+    let reverse = sweep == Sweep::Reverse;
     for k in 0..n {
         let i = if reverse { n.wrapping_sub(1).wrapping_sub(k) } else { k };
         let ahead = if reverse { i.checked_sub(AHEAD) } else { i.checked_add(AHEAD) };
         if let Some(c) = ahead.and_then(|j| constraints.get(j)) {
             let [i0, i1] = &c.impulses;
             core::hint::black_box((c.a, i0.normal_impulse, i1.tangent_impulse));
-            if whole {
+            if prefetch == Prefetch::Whole {
                 let [p0, p1] = &c.points;
                 core::hint::black_box((c.normal.x, p0.base_separation, p0.max_normal_impulse, p1.rt[0]));
             }
@@ -92,12 +125,12 @@ pub(super) fn visit_all(
 }
 
 /// [`warm_start`] on one constraint.
-fn warm_start_one(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverBody, total: bool) {
+fn warm_start_one(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverBody, carried: Carried) {
     let (mut sn, mut st, mut wa, mut wb) = (ZERO, ZERO, ZERO, ZERO);
     let count = usize::from(c.count);
     for ci in c.impulses.iter_mut().take(count) {
         let (ln, lt) = (ci.normal_impulse, ci.tangent_impulse);
-        if total {
+        if carried == Carried::FromPreviousSubstep {
             ci.total_normal_impulse += ln;
         }
         sn += ln;
@@ -111,17 +144,17 @@ fn warm_start_one(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverB
     b.w += wb;
 }
 
-/// One sweep over every constraint, in pair order or in `reverse`.
+/// One sweep over every constraint, in pair order or in reverse, with the
+/// position bias or without (relax).
 pub(crate) fn solve(
     bodies: &mut [SolverBody],
     constraints: &mut [ContactConstraint],
     params: &StepParams,
-    use_bias: bool,
-    reverse_points: bool,
-    reverse: bool,
+    bias: Bias,
+    sweep: Sweep,
 ) {
-    visit_all(constraints, reverse, true, |c| {
-        with_pair(bodies, c, |c, a, b| solve_one(c, a, b, params, use_bias, reverse_points));
+    visit_all(constraints, sweep, Prefetch::Whole, |c| {
+        with_pair(bodies, c, |c, a, b| solve_one(c, a, b, params, bias, sweep));
     });
 }
 
@@ -153,15 +186,19 @@ pub(crate) fn solve(
 ///
 /// Returns false, changing nothing, when no case fits (round-off) or the
 /// system is singular, so the caller can solve the points one at a time.
-fn solve_block(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverBody, terms: [Terms; 2]) -> bool {
-    let [(bias1, ms1, is1), (bias2, ms2, is2)] = terms;
+fn solve_block(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverBody, rows: [Row; 2]) -> bool {
+    let [r1, r2] = rows;
     let n = c.normal;
     let ([p1, p2], [pi1, pi2]) = (&c.points, &c.impulses);
-    let inv = match (is1 > ZERO, is2 > ZERO) {
+    let inv = match (r1.impulse_scale > ZERO, r2.impulse_scale > ZERO) {
         (false, false) => c.block,
         (true, true) => c.soft_block,
         // One point soft, one speculative: rare, formed here.
-        _ => match inverse_from_diagonal_inverses(p1.normal_mass * ms1, p2.normal_mass * ms2, c.k12) {
+        _ => match inverse_from_diagonal_inverses(
+            p1.normal_mass * r1.mass_scale,
+            p2.normal_mass * r2.mass_scale,
+            c.k12,
+        ) {
             Some(inv) => inv,
             None => return false,
         },
@@ -171,8 +208,8 @@ fn solve_block(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverBody
     let dvn = (b.v - a.v).dot(n);
     let v1 = dvn + b.w * p1.rn[1] - a.w * p1.rn[0];
     let v2 = dvn + b.w * p2.rn[1] - a.w * p2.rn[0];
-    let q1 = v1 + bias1 - k11 * l1 - k12 * l2;
-    let q2 = v2 + bias2 - k12 * l1 - k22 * l2;
+    let q1 = v1 + r1.bias - k11 * l1 - k12 * l2;
+    let q2 = v2 + r2.bias - k12 * l1 - k22 * l2;
     let [i11, i12, i22] = inv;
     // Case 1: both push.
     let x1 = -(i11 * q1 + i12 * q2);
@@ -182,12 +219,12 @@ fn solve_block(c: &mut ContactConstraint, a: &mut SolverBody, b: &mut SolverBody
     } else {
         // Case 2: only the first pushes; the second must not be approaching.
         // The diagonal entry is k₁₁/s_m.
-        let x1 = p1.normal_mass_div(q1) * ms1;
+        let x1 = p1.normal_mass_div(q1) * r1.mass_scale;
         if x1 >= ZERO && q2 + k12 * x1 >= ZERO {
             Some((x1, ZERO))
         } else {
             // Case 3: only the second pushes.
-            let x2 = p2.normal_mass_div(q2) * ms2;
+            let x2 = p2.normal_mass_div(q2) * r2.mass_scale;
             if x2 >= ZERO && q1 + k12 * x2 >= ZERO {
                 Some((ZERO, x2))
             } else if q1 >= ZERO && q2 >= ZERO {
@@ -250,9 +287,6 @@ fn note_approach(cp: &mut PointConstraint, vn: Scalar, new_impulse: Scalar) {
     }
 }
 
-/// A contact point's (bias velocity, mass scale, impulse scale) for one pass.
-type Terms = (Scalar, Scalar, Scalar);
-
 /// Relative velocity of the contact point along a direction, from the
 /// precomputed arms: (vB − vA)·d + ωB·(rB × d) − ωA·(rA × d).
 #[inline(always)]
@@ -282,8 +316,8 @@ fn solve_one(
     a: &mut SolverBody,
     b: &mut SolverBody,
     params: &StepParams,
-    use_bias: bool,
-    reverse_points: bool,
+    bias: Bias,
+    sweep: Sweep,
 ) {
     let n = c.normal;
     let soft = if c.static_pair { params.static_soft } else { params.soft };
@@ -297,34 +331,30 @@ fn solve_one(
     // and for a circle it is the exact answer (rotation does not move its surface).
     // The narrow phase measures the true separation again at the next step.
     let dpn = (b.p - a.p).dot(n);
-    let mut terms: [Terms; 2] = [(ZERO, scalar::ONE, ZERO); 2];
-    for (term, (cp, _)) in terms.iter_mut().zip(c.points()) {
+    let mut rows = [Row::RIGID; 2];
+    for (row, (cp, _)) in rows.iter_mut().zip(c.points()) {
         let s = cp.base_separation + dpn + b.angle * cp.rn[1] - a.angle * cp.rn[0];
-        *term = if s > ZERO {
+        *row = if s > ZERO {
             // Speculative: allow closing the gap within this sub-step, no more.
-            (s * params.inv_h, scalar::ONE, ZERO)
-        } else if use_bias {
-            let push = (s * soft.bias_rate).max(-params.push_speed);
-            (push, soft.mass_scale, soft.impulse_scale)
+            Row::speculative(s, params.inv_h)
         } else {
-            (ZERO, scalar::ONE, ZERO)
+            soft.row(s, bias).pushing_at_most(params.push_speed)
         };
     }
     // Two-point manifolds are solved as a block; the point-by-point fallback
     // (ill-conditioned or round-off) alternates its order between sweeps so that
     // neither point is always first.
-    let solved_together = c.has_block && solve_block(c, a, b, terms);
+    let solved_together = c.has_block && solve_block(c, a, b, rows);
     if !solved_together {
-        let order: [usize; 2] = if reverse_points && count == 2 { [1, 0] } else { [0, 1] };
+        let order: [usize; 2] = if sweep == Sweep::Reverse && count == 2 { [1, 0] } else { [0, 1] };
         let n_m = c.n_m;
         for &i in order.iter().take(count) {
-            let (Some(cp), Some(ci), Some(&(bias, mass_scale, impulse_scale))) =
-                (c.points.get_mut(i), c.impulses.get_mut(i), terms.get(i))
+            let (Some(cp), Some(ci), Some(row)) = (c.points.get_mut(i), c.impulses.get_mut(i), rows.get(i))
             else {
                 continue;
             };
             let vn = relative_speed(a, b, n, cp.rn);
-            let impulse = -(cp.normal_mass * mass_scale * (vn + bias)) - impulse_scale * ci.normal_impulse;
+            let impulse = row.impulse(cp.normal_mass, vn, ci.normal_impulse);
             let new = (ci.normal_impulse + impulse).max(ZERO);
             let applied = accumulate_normal(cp, ci, vn, new);
             apply_along(a, b, n_m, ci.irn, applied);
