@@ -158,10 +158,10 @@ pub(crate) fn solve(
     });
 }
 
-/// Solves both normal points of a two-point manifold together. A sequential
-/// sweep over the two points leaves the first with more impulse than the second,
-/// which tilts stacked boxes a little every step; the block solve has no
-/// favourite.
+/// Solves both normal points of a two-point manifold together. Solving the two
+/// points one after the other leaves the first with more impulse than the
+/// second, which tilts stacked boxes a little every step; the block solve has
+/// no favourite.
 ///
 /// Box2D's soft update of one point, Δλᵢ = −mᵢ·(s_m·(vᵢ + biasᵢ) + s_i·kᵢᵢ·λᵢ)
 /// with mᵢ = 1/kᵢᵢ, is exactly one Gauss-Seidel step (relaxation s_m + s_i = 1)
@@ -342,8 +342,8 @@ fn solve_one(
         };
     }
     // Two-point manifolds are solved as a block; the point-by-point fallback
-    // (ill-conditioned or round-off) alternates its order between sweeps so that
-    // neither point is always first.
+    // (ill-conditioned or round-off) takes the points in the sweep's direction,
+    // which alternates, so that neither point is always first.
     let solved_together = c.has_block && solve_block(c, a, b, rows);
     if !solved_together {
         let order: [usize; 2] = if sweep == Sweep::Reverse && count == 2 { [1, 0] } else { [0, 1] };
