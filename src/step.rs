@@ -37,7 +37,7 @@ use crate::arbiter::ArbiterStore;
 use crate::arena::Arena;
 use crate::body::Body;
 use crate::collision::{self, BroadPhase};
-use crate::constraint::{Joint, JointMarker, UserConstraints};
+use crate::constraint::{Joint, JointMarker, UserConstraints, JOINT_DAMPING_RATIO, JOINT_HERTZ};
 use crate::error::Error;
 use crate::force::{self, Generators};
 use crate::geometry::PolygonPath;
@@ -88,6 +88,8 @@ pub(crate) struct StepContext {
     pub(crate) contact_softness: Softness,
     /// Contact softness against a static or kinematic body (twice as stiff).
     pub(crate) static_softness: Softness,
+    /// The soft position correction of rods, ropes, pivots and welds.
+    pub(crate) joint_softness: Softness,
     /// Fastest speed at which overlap is pushed out, m/s.
     pub(crate) push_speed: Scalar,
     /// Approach speed below which contacts do not bounce, m/s.
@@ -109,8 +111,9 @@ impl StepContext {
         let inv_substeps = Scalar::from_num(substeps).recip();
         let h = dt * inv_substeps;
         let inv_h = h.recip();
-        // Box2D caps the contact stiffness at a quarter of the sub-step rate.
-        let hertz = def.contact_hertz.min(inv_h * Scalar::lit("0.25"));
+        // Box2D caps every stiffness at a quarter of the sub-step rate.
+        let max_hertz = Softness::max_hertz(inv_h);
+        let hertz = def.contact_hertz.min(max_hertz);
         let zeta = def.contact_damping_ratio;
         let eighth_turn = (scalar::FRAC_PI_2 * scalar::HALF).div_or_zero(dt);
         Ok(Self {
@@ -124,6 +127,7 @@ impl StepContext {
             bounds: def.bounds,
             contact_softness: Softness::new(hertz, zeta, h),
             static_softness: Softness::new(hertz * scalar::TWO, zeta, h),
+            joint_softness: Softness::new(JOINT_HERTZ.min(max_hertz), JOINT_DAMPING_RATIO, h),
             push_speed: def.contact_push_speed,
             restitution_threshold: def.restitution_threshold,
             arbiter_persistence: def.arbiter_persistence,

@@ -1,9 +1,9 @@
 //! Pivot (revolute) joint: a point constraint, optional angle limits, optional motor.
 
-use super::{anchors, apply_angular, apply_linear, Joint, MaxTorque, Motor};
+use super::maths::{anchors, apply_angular, apply_linear};
+use super::{Joint, MaxTorque, Motor};
 use crate::math::scalar::{self, Scalar, ZERO};
-use crate::math::Vector2;
-use crate::solver::SolverBody;
+use crate::solver::{Bias, Row, SolverBody};
 
 pub(super) fn warm_start(j: &mut Joint, a: &mut SolverBody, b: &mut SolverBody) {
     let (ra, rb, _) = anchors(j, a, b);
@@ -36,7 +36,7 @@ pub(super) fn solve(
     limits: Option<(Scalar, Scalar)>,
     motor: Option<Motor>,
     h: Scalar,
-    use_bias: bool,
+    bias: Bias,
 ) {
     let axial = j.axial_mass;
     let sign = orientation(j);
@@ -60,17 +60,17 @@ pub(super) fn solve(
         let angle = relative_angle(j, a, b) * sign;
         // Lower limit: θ − lower ≥ 0, pushes θ up (impulse ≥ 0).
         let c = angle - lower;
-        let applied = limit_step(j, c, relative_rate(a, b), axial, h, use_bias, j.limit_impulse);
+        let applied = limit_step(j, c, relative_rate(a, b), axial, h, bias, j.limit_impulse);
         j.limit_impulse += applied;
         apply_angular(j, a, b, applied * sign);
         // Upper limit: upper − θ ≥ 0, pushes θ down (stored as a positive impulse).
         let c = upper - angle;
         let rate = -relative_rate(a, b);
-        let applied = limit_step(j, c, rate, axial, h, use_bias, j.angular_impulse);
+        let applied = limit_step(j, c, rate, axial, h, bias, j.angular_impulse);
         j.angular_impulse += applied;
         apply_angular(j, a, b, -(applied * sign));
     }
-    solve_point(j, a, b, use_bias);
+    solve_point(j, a, b, bias);
 }
 
 /// The change of a one-sided angular limit impulse (accumulated stays ≥ 0):
@@ -81,33 +81,21 @@ fn limit_step(
     rate: Scalar,
     axial: Scalar,
     h: Scalar,
-    use_bias: bool,
+    bias: Bias,
     old: Scalar,
 ) -> Scalar {
-    let (bias, mass_scale, impulse_scale) = if c > ZERO {
-        (c * h.recip(), scalar::ONE, ZERO)
-    } else if use_bias {
-        (c * j.soft.bias_rate, j.soft.mass_scale, j.soft.impulse_scale)
-    } else {
-        (ZERO, scalar::ONE, ZERO)
-    };
-    let impulse = (-(axial * mass_scale * (rate + bias))) - (impulse_scale * old);
+    let row = if c > ZERO { Row::speculative(c, h.recip()) } else { j.soft.row(c, bias) };
+    let impulse = row.impulse(axial, rate, old);
     let new = (old + impulse).max(ZERO);
     new - old
 }
 
 /// The point constraint shared with the weld joint: the anchors coincide.
-pub(super) fn solve_point(j: &mut Joint, a: &mut SolverBody, b: &mut SolverBody, use_bias: bool) {
+pub(super) fn solve_point(j: &mut Joint, a: &mut SolverBody, b: &mut SolverBody, bias: Bias) {
     let (ra, rb, d) = anchors(j, a, b);
     let Some(mass) = j.point_mass else { return };
     let rate = b.velocity_at_offset(rb) - a.velocity_at_offset(ra);
-    let (bias, mass_scale, impulse_scale) = if use_bias {
-        (d * j.soft.bias_rate, j.soft.mass_scale, j.soft.impulse_scale)
-    } else {
-        (Vector2::ZERO, scalar::ONE, ZERO)
-    };
-    let solved = mass * (rate + bias);
-    let impulse = -(solved * mass_scale) - j.impulse * impulse_scale;
+    let impulse = j.soft.row(d, bias).impulse(mass, rate, j.impulse);
     j.impulse += impulse;
     j.step_linear += impulse;
     apply_linear(j, a, b, ra, rb, impulse);

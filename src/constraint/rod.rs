@@ -1,14 +1,24 @@
 //! Rod (fixed distance) and rope (maximum distance) between the anchors.
 
-use super::{anchors, apply_linear, Joint};
-use crate::math::scalar::{self, Scalar, ZERO};
-use crate::solver::SolverBody;
+use super::maths::{anchors, apply_linear};
+use super::Joint;
+use crate::math::scalar::{Scalar, ZERO};
+use crate::solver::{Bias, Row, SolverBody};
 
 pub(super) fn warm_start(j: &mut Joint, a: &mut SolverBody, b: &mut SolverBody) {
     let (ra, rb, d) = anchors(j, a, b);
     let p = d.normalize() * j.impulse.x;
     j.step_linear += p;
     apply_linear(j, a, b, ra, rb, p);
+}
+
+/// Which distance a [`solve`] keeps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Distance {
+    /// Exactly the length: a rod.
+    Exact,
+    /// At most the length: a rope, slack below.
+    AtMost,
 }
 
 /// One iteration of the distance constraint `|d| = length` (rod) or
@@ -19,10 +29,11 @@ pub(super) fn solve(
     a: &mut SolverBody,
     b: &mut SolverBody,
     length: Scalar,
-    rope: bool,
+    distance: Distance,
     h: Scalar,
-    use_bias: bool,
+    bias: Bias,
 ) {
+    let rope = distance == Distance::AtMost;
     let (ra, rb, d) = anchors(j, a, b);
     let (axis, len) = d.normalize_and_length();
     if len == ZERO {
@@ -34,15 +45,13 @@ pub(super) fn solve(
     let mass = k.recip();
     let c = len - length;
     let rate = (b.velocity_at_offset(rb) - a.velocity_at_offset(ra)).dot(axis);
-    let (bias, mass_scale, impulse_scale) = if rope && c < ZERO {
+    let row = if rope && c < ZERO {
         // Slack: let it lengthen up to the slack within this sub-step, no more.
-        (c * h.recip(), scalar::ONE, ZERO)
-    } else if use_bias {
-        (c * j.soft.bias_rate, j.soft.mass_scale, j.soft.impulse_scale)
+        Row::speculative(c, h.recip())
     } else {
-        (ZERO, scalar::ONE, ZERO)
+        j.soft.row(c, bias)
     };
-    let impulse = (-(mass * mass_scale * (rate + bias))) - (impulse_scale * j.impulse.x);
+    let impulse = row.impulse(mass, rate, j.impulse.x);
     let mut new = j.impulse.x + impulse;
     if rope {
         // A rope only pulls: the impulse on B along A→B is never positive.

@@ -1,6 +1,7 @@
 //! Spring and damped spring: an explicit force along the line between the anchors.
 
-use super::{anchors, apply_linear, Joint};
+use super::maths::{anchors, apply_linear};
+use super::Joint;
 use crate::math::scalar::{Scalar, ZERO};
 use crate::solver::SolverBody;
 

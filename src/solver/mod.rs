@@ -52,19 +52,25 @@
 //! The loops run over two dense arrays built once per step (see [`contact`]):
 //! a [`SolverBody`] per body slot and a [`ContactConstraint`] per solved arbiter.
 
+mod body;
 mod contact;
+mod softness;
+mod sweep;
 
-pub use contact::{ContactConstraint, SolverBody};
+pub use body::SolverBody;
+pub use contact::ContactConstraint;
 
-pub(crate) use contact::inverse_mass;
-use contact::StepParams;
+pub(crate) use body::inverse_mass;
+use contact::{Carried, StepParams};
 use managed::ManagedSlice;
+pub(crate) use softness::{Row, Softness};
+pub(crate) use sweep::{Bias, Sweep};
 
 use crate::arbiter::ArbiterStore;
 use crate::arena::Arena;
 use crate::body::Body;
 use crate::constraint::{Joint, JointMarker, UserConstraints};
-use crate::math::scalar::{self, Scalar, ZERO};
+use crate::math::scalar::{Scalar, ZERO};
 use crate::math::Vector2;
 use crate::step::StepContext;
 
@@ -74,39 +80,21 @@ use crate::step::StepContext;
 /// only adds each constraint's own fixed impulses to its bodies' velocities,
 /// and fixed-point sums are exact, so the order changes no result (short of a
 /// velocity saturating).
-fn warm_start_reverse(substep: u32) -> bool {
+fn warm_start_direction(substep: u32) -> Sweep {
     match substep.checked_sub(1) {
-        None => true,
-        Some(previous) => !sweep_reverse(previous),
+        None => Sweep::Reverse,
+        Some(previous) => sweep_direction(previous).reversed(),
     }
 }
 
-/// Whether sub-step `substep`'s sweeps run in reverse: forward, reverse,
-/// reverse, forward, forward, reverse, … (each direction twice in a row, so
-/// that neither end of the constraint list is always solved first).
-fn sweep_reverse(substep: u32) -> bool {
-    (substep.saturating_add(1) / 2) % 2 == 1
-}
-
-/// Soft-constraint coefficients for one sub-step length (Box2D's `b2Softness`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Softness {
-    pub(crate) bias_rate: Scalar,
-    pub(crate) mass_scale: Scalar,
-    pub(crate) impulse_scale: Scalar,
-}
-
-impl Softness {
-    /// A spring of `hertz` and damping ratio `zeta`, discretised for sub-step `h`.
-    pub(crate) fn new(hertz: Scalar, zeta: Scalar, h: Scalar) -> Self {
-        if hertz == ZERO {
-            return Self { bias_rate: ZERO, mass_scale: scalar::ONE, impulse_scale: ZERO };
-        }
-        let omega = scalar::TAU * hertz;
-        let a1 = (zeta * scalar::TWO) + (h * omega);
-        let a2 = h * omega * a1;
-        let a3 = (scalar::ONE + a2).recip();
-        Self { bias_rate: omega.div_or_zero(a1), mass_scale: a2 * a3, impulse_scale: a3 }
+/// The direction of sub-step `substep`'s sweeps: forward, reverse, reverse,
+/// forward, forward, reverse, … (each direction twice in a row, so that
+/// neither end of the constraint list is always solved first).
+fn sweep_direction(substep: u32) -> Sweep {
+    if (substep.saturating_add(1) / 2) % 2 == 1 {
+        Sweep::Reverse
+    } else {
+        Sweep::Forward
     }
 }
 
@@ -136,23 +124,23 @@ pub(crate) fn solve(
     let user = !constraints.is_empty();
     let (vmax, wmax) = (ctx.max_linear_speed, ctx.max_angular_speed);
     for substep in 0..n {
-        let reverse = sweep_reverse(substep);
+        let sweep = sweep_direction(substep);
         let (sbodies, _) = solver.split();
         for sb in sbodies.iter_mut().filter(|sb| sb.forced) {
-            sb.v += sb.pending_v;
-            sb.w += sb.pending_w;
+            sb.v += sb.force_dv;
+            sb.w += sb.force_dw;
         }
-        for_each_joint(joints, solver, false, |j, a, b| j.warm_start(a, b));
+        for_each_joint(joints, solver, Sweep::Forward, |j, a, b| j.warm_start(a, b));
         let (sbodies, cs) = solver.split();
-        contact::warm_start(sbodies, cs, warm_start_reverse(substep), substep > 0);
-        for_each_joint(joints, solver, false, |j, a, b| j.solve(a, b, h, true));
+        contact::warm_start(sbodies, cs, warm_start_direction(substep), Carried::for_substep(substep));
+        for_each_joint(joints, solver, Sweep::Forward, |j, a, b| j.solve(a, b, h, Bias::On));
         if user {
             store_bodies(solver, bodies);
             solve_user_constraints(bodies, constraints, h);
             reload_bodies(solver, bodies);
         }
         let (sbodies, cs) = solver.split();
-        contact::solve(sbodies, cs, &params, true, reverse, reverse);
+        contact::solve(sbodies, cs, &params, Bias::On, sweep);
         for sb in sbodies.iter_mut().filter(|sb| sb.moves) {
             // Component clamps are cheap and bound the displacement; the
             // exact speed limit is applied once at the end of the step.
@@ -167,11 +155,12 @@ pub(crate) fn solve(
         // Relax: one sweep in the sub-step's direction; the last sub-step
         // adds a forward sweep, which drains what the push-out left in the
         // velocities the step ends with.
-        for_each_joint(joints, solver, true, |j, a, b| j.solve(a, b, h, false));
+        // The joints' relax pass runs in reverse slot order in every sub-step.
+        for_each_joint(joints, solver, Sweep::Reverse, |j, a, b| j.solve(a, b, h, Bias::Off));
         let (sbodies, cs) = solver.split();
-        contact::solve(sbodies, cs, &params, false, reverse, reverse);
+        contact::solve(sbodies, cs, &params, Bias::Off, sweep);
         if substep + 1 == n {
-            contact::solve(sbodies, cs, &params, false, false, false);
+            contact::solve(sbodies, cs, &params, Bias::Off, Sweep::Forward);
         }
     }
     let (sbodies, cs) = solver.split();
@@ -238,23 +227,27 @@ fn reload_bodies(solver: &mut Solver<'_>, bodies: &Arena<'_, Body>) {
     }
 }
 
-/// Runs `f` on every joint with its two solver bodies, in joint-slot order or
-/// in `reverse`. A joint to a world point gets a static stand-in body for B.
+/// Runs `f` on every joint with its two solver bodies, in joint-slot order
+/// (`Sweep::Forward`) or the reverse. A joint to a world point gets a static
+/// stand-in body for B.
 fn for_each_joint(
     joints: &mut Arena<'_, Joint, JointMarker>,
     solver: &mut Solver<'_>,
-    reverse: bool,
+    order: Sweep,
     mut f: impl FnMut(&mut Joint, &mut SolverBody, &mut SolverBody),
 ) {
     let bodies: &mut [SolverBody] = &mut solver.bodies;
     let used = joints.slots_used();
     for k in 0..used {
-        let i = if reverse { used.saturating_sub(1).saturating_sub(k) } else { k };
+        let i = match order {
+            Sweep::Forward => k,
+            Sweep::Reverse => used.saturating_sub(1).saturating_sub(k),
+        };
         let Some(j) = joints.get_at_mut(i) else { continue };
         let ia = j.def.body_a.index();
         match j.def.body_b {
             Some(hb) => {
-                if let Some((a, b)) = contact::pair_at(bodies, ia, hb.index()) {
+                if let Some((a, b)) = body::pair_at(bodies, ia, hb.index()) {
                     f(j, a, b);
                 }
             }
@@ -279,7 +272,7 @@ fn prepare_joints(
     for (_, j) in joints.iter_mut() {
         let b = j.def.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
         if let Some(a) = bodies.get(j.def.body_a) {
-            j.prepare(a, b, ctx.h);
+            j.prepare(a, b, ctx.joint_softness);
         }
     }
     for (_, c) in constraints.iter_mut() {

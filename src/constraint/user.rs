@@ -1,0 +1,47 @@
+//! Game constraints: the [`Constraint`] trait a game implements, solved beside
+//! the built-in joints, and how a world stores one. They are trait objects, so
+//! they are not part of a snapshot; they name their bodies by handle.
+
+use crate::hook::Hook;
+
+use crate::arena::Handle;
+use crate::body::{Body, BodyHandle};
+use crate::math::scalar::Scalar;
+
+/// Game constraints ([`Constraint`] objects) a world can hold.
+pub const MAX_USER_CONSTRAINTS: usize = 16;
+/// Marker type naming game constraints in handles.
+#[derive(Debug)]
+pub enum ConstraintMarker {}
+/// Handle of a game constraint.
+pub type ConstraintHandle = Handle<ConstraintMarker>;
+
+/// A game's constraint: applies impulses to its two bodies in every solver
+/// iteration (the manual's `Constraint::solve`).
+pub trait Constraint {
+    /// Called once per step before the iterations, with the step length `dt`
+    /// (optional: precompute effective masses here).
+    fn prepare(&mut self, a: &Body, b: &Body, dt: Scalar) {
+        let _ = (a, b, dt);
+    }
+
+    /// Applies impulses to the two bodies for one sub-step of `h` seconds, e.g.
+    /// with [`Body::apply_impulse_at`]. A constraint to a fixed world point gets a
+    /// static body at the origin as `b`; changes to it are ignored.
+    fn solve(&mut self, a: &mut Body, b: &mut Body, h: Scalar);
+}
+
+/// A game's constraint stored in a world.
+pub(crate) struct UserConstraint<'a> {
+    pub(crate) body_a: BodyHandle,
+    pub(crate) body_b: Option<BodyHandle>,
+    pub(crate) constraint: Hook<'a, dyn Constraint + Send + 'a>,
+}
+
+/// A world's game constraints, in registration order (slot order).
+pub(crate) type UserConstraints<'a> = crate::arena::Arena<
+    'a,
+    UserConstraint<'a>,
+    ConstraintMarker,
+    [crate::arena::Slot<UserConstraint<'a>>; MAX_USER_CONSTRAINTS],
+>;
