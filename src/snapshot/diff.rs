@@ -2,7 +2,7 @@
 
 use core::fmt;
 
-use super::read::Layout;
+use super::layout::Layout;
 use crate::error::Error;
 
 /// Which object of the state a difference is in.
