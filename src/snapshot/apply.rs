@@ -89,7 +89,7 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
     w.post_step.clear();
 }
 
-pub(super) fn body_from(p: &Props, r: &BodyRecord) -> Body {
+fn body_from(p: &Props, r: &BodyRecord) -> Body {
     let mut b = Body::ground();
     b.position = r.position;
     b.rotation = r.rotation;

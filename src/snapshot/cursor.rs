@@ -3,7 +3,7 @@
 //! [`Error::InvalidSnapshot`] ("truncated"), never a panic or an out-of-bounds
 //! slice.
 
-use super::bad;
+use super::invalid;
 use crate::error::Error;
 use crate::math::scalar::Scalar;
 use crate::math::{Rect, Rot, Vector2};
@@ -26,8 +26,8 @@ impl<'b> Cursor<'b> {
     }
 
     pub(super) fn take<const N: usize>(&mut self) -> Result<[u8; N], Error> {
-        let end = self.pos.checked_add(N).ok_or_else(|| bad("truncated"))?;
-        let bytes = self.buf.get(self.pos..end).ok_or_else(|| bad("truncated"))?;
+        let end = self.pos.checked_add(N).ok_or_else(|| invalid("truncated"))?;
+        let bytes = self.buf.get(self.pos..end).ok_or_else(|| invalid("truncated"))?;
         self.pos = end;
         let mut out = [0u8; N];
         out.copy_from_slice(bytes);
@@ -50,7 +50,7 @@ impl<'b> Cursor<'b> {
         match self.u8()? {
             0 => Ok(false),
             1 => Ok(true),
-            _ => Err(bad("a flag is neither 0 nor 1")),
+            _ => Err(invalid("a flag is neither 0 nor 1")),
         }
     }
     pub(super) fn scalar(&mut self) -> Result<Scalar, Error> {
@@ -66,9 +66,9 @@ impl<'b> Cursor<'b> {
         Ok(Rect { min: self.vector()?, max: self.vector()? })
     }
     pub(super) fn skip(&mut self, n: usize) -> Result<(), Error> {
-        let end = self.pos.checked_add(n).ok_or_else(|| bad("truncated"))?;
+        let end = self.pos.checked_add(n).ok_or_else(|| invalid("truncated"))?;
         if end > self.buf.len() {
-            return Err(bad("truncated"));
+            return Err(invalid("truncated"));
         }
         self.pos = end;
         Ok(())

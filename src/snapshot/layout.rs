@@ -11,7 +11,7 @@
 use super::cursor::Cursor;
 use super::write::Props;
 use super::{
-    bad, ARBITER_RECORD, BODY_RECORD, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD,
+    invalid, ARBITER_RECORD, BODY_RECORD, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD,
     TRAILER, VERSION,
 };
 use crate::body::{BodyHandle, BodyType, Shape};
@@ -56,11 +56,11 @@ fn read_alloc(c: &mut Cursor<'_>) -> Result<Alloc, Error> {
 
 /// `n` records of `size` bytes must fit in what is left.
 fn skip_records(c: &mut Cursor<'_>, n: u32, size: usize) -> Result<(), Error> {
-    let total = (n as usize).checked_mul(size).ok_or_else(|| bad("truncated"))?;
+    let total = (n as usize).checked_mul(size).ok_or_else(|| invalid("truncated"))?;
     c.skip(total)
 }
 
-pub(super) fn read_def(c: &mut Cursor<'_>) -> Result<WorldDef, Error> {
+fn read_def(c: &mut Cursor<'_>) -> Result<WorldDef, Error> {
     let bounds = c.rect()?;
     let max_linear_speed = c.scalar()?;
     let max_angular_speed = c.scalar()?;
@@ -87,10 +87,10 @@ impl<'b> Layout<'b> {
     pub(super) fn parse(buf: &'b [u8]) -> Result<Self, Error> {
         let mut c = Cursor::at(buf, 0);
         if &c.take::<4>()? != MAGIC {
-            return Err(bad("not a snapshot (no ARPS header)"));
+            return Err(invalid("not a snapshot (no ARPS header)"));
         }
         if c.u32()? != VERSION {
-            return Err(bad("another snapshot format version"));
+            return Err(invalid("another snapshot format version"));
         }
         let step_count = c.u64()?;
         let def = read_def(&mut c)?;
@@ -103,7 +103,7 @@ impl<'b> Layout<'b> {
         skip_records(&mut c, bodies.used, BODY_RECORD)?;
         let generators = read_alloc(&mut c)?;
         if generators.used as usize > MAX_FORCE_GENERATORS {
-            return Err(bad("more generator slots than any world has"));
+            return Err(invalid("more generator slots than any world has"));
         }
         let generators_at = c.pos();
         for _ in 0..generators.used {
@@ -116,10 +116,10 @@ impl<'b> Layout<'b> {
         let joints_at = c.pos();
         skip_records(&mut c, joints.used, JOINT_RECORD)?;
         if &c.take::<4>()? != TRAILER {
-            return Err(bad("no ARPE trailer"));
+            return Err(invalid("no ARPE trailer"));
         }
         if c.pos() != buf.len() {
-            return Err(bad("bytes after the trailer"));
+            return Err(invalid("bytes after the trailer"));
         }
         Ok(Self {
             buf,
@@ -148,13 +148,13 @@ impl<'b> Layout<'b> {
         let shape = match c.u8()? {
             0 => Shape::Circle { radius: c.scalar()? },
             1 => Shape::Polygon(crate::body::PathHandle::from_parts(c.u32()?, c.u32()?)),
-            _ => return Err(bad("unknown shape")),
+            _ => return Err(invalid("unknown shape")),
         };
         let body_type = match c.u8()? {
             0 => BodyType::Static,
             1 => BodyType::Kinematic,
             2 => BodyType::Dynamic,
-            _ => return Err(bad("unknown body type")),
+            _ => return Err(invalid("unknown body type")),
         };
         Ok(Props {
             shape,
@@ -296,11 +296,11 @@ fn read_targets(c: &mut Cursor<'_>) -> Result<Targets, Error> {
             let mut v = heapless::Vec::new();
             for _ in 0..n {
                 let h = BodyHandle::from_parts(c.u32()?, c.u32()?);
-                v.push(h).map_err(|_| bad("too many generator targets"))?;
+                v.push(h).map_err(|_| invalid("too many generator targets"))?;
             }
             Targets::Bodies(v)
         }
-        _ => return Err(bad("unknown generator targets")),
+        _ => return Err(invalid("unknown generator targets")),
     })
 }
 
@@ -320,7 +320,7 @@ fn read_generator(c: &mut Cursor<'_>) -> Result<GeneratorRecord, Error> {
             targets: read_targets(c)?,
         }),
         4 => StoredGenerator::Custom,
-        _ => return Err(bad("unknown generator kind")),
+        _ => return Err(invalid("unknown generator kind")),
     };
     Ok((generation, next, g))
 }
@@ -386,7 +386,7 @@ fn read_joint(c: &mut Cursor<'_>) -> Result<Joint, Error> {
             }
         }
         5 => JointKind::Weld,
-        _ => return Err(bad("unknown joint kind")),
+        _ => return Err(invalid("unknown joint kind")),
     };
     let def = JointDef {
         body_a,

@@ -67,7 +67,7 @@ const LINK_MASK: u32 = (1 << 30) - 1;
 const NO_LINK: u32 = LINK_MASK;
 
 /// The error for bytes that are not a valid snapshot; `what` says which check failed.
-fn bad(what: &'static str) -> Error {
+fn invalid(what: &'static str) -> Error {
     Error::InvalidSnapshot { what }
 }
 

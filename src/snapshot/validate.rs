@@ -9,7 +9,7 @@
 
 use super::layout::{Alloc, BodyRecord, Layout, StoredGenerator};
 use super::write::{paths_checksum, Props};
-use super::{bad, NO_LINK};
+use super::{invalid, NO_LINK};
 use crate::arbiter::ArbiterState;
 use crate::body::{BodyHandle, BodyType, Shape};
 use crate::error::Error;
@@ -25,18 +25,19 @@ fn check_free_list(
     alloc: Alloc,
     mut free_at: impl FnMut(u32) -> Result<Option<u32>, Error>,
 ) -> Result<(), Error> {
-    let expected = alloc.used.checked_sub(alloc.len).ok_or_else(|| bad("more live objects than slots"))?;
+    let expected =
+        alloc.used.checked_sub(alloc.len).ok_or_else(|| invalid("more live objects than slots"))?;
     let mut at = alloc.free_head;
     let mut seen = 0u32;
     while at != NO_LINK {
         if at >= alloc.used || seen >= expected {
-            return Err(bad("broken free list"));
+            return Err(invalid("broken free list"));
         }
-        at = free_at(at)?.ok_or_else(|| bad("free list through a live slot"))?;
+        at = free_at(at)?.ok_or_else(|| invalid("free list through a live slot"))?;
         seen = seen.saturating_add(1);
     }
     if seen != expected {
-        return Err(bad("free list misses free slots"));
+        return Err(invalid("free list misses free slots"));
     }
     Ok(())
 }
@@ -49,12 +50,12 @@ fn check_props(w: &World<'_>, p: &Props) -> Result<(), Error> {
     match p.shape {
         Shape::Circle { radius } => {
             if !in_range(radius, Scalar::DELTA, MAX_CIRCLE_RADIUS) {
-                return Err(bad("circle radius out of range"));
+                return Err(invalid("circle radius out of range"));
             }
         }
         Shape::Polygon(h) => {
             if w.paths.get(h).is_none() {
-                return Err(bad("a body's polygon path is not in this world"));
+                return Err(invalid("a body's polygon path is not in this world"));
             }
         }
     }
@@ -65,10 +66,10 @@ fn check_props(w: &World<'_>, p: &Props) -> Result<(), Error> {
         _ => p.mass == ZERO && p.inertia == ZERO,
     };
     if !ok_mass {
-        return Err(bad("mass out of range"));
+        return Err(invalid("mass out of range"));
     }
     if !in_range(p.friction, ZERO, MAX_FRICTION) || !in_range(p.restitution, ZERO, scalar::ONE) {
-        return Err(bad("material out of range"));
+        return Err(invalid("material out of range"));
     }
     Ok(())
 }
@@ -77,12 +78,12 @@ fn check_motion(r: &BodyRecord) -> Result<(), Error> {
     let far = MAX_COORDINATE + Scalar::from_int(4096);
     let p = r.position;
     if p.x.abs() > far || p.y.abs() > far {
-        return Err(bad("position out of range"));
+        return Err(invalid("position out of range"));
     }
     let q = r.rotation;
     let norm = (q.c * q.c) + (q.s * q.s);
     if (norm - scalar::ONE).abs() > Scalar::lit("0.000001") {
-        return Err(bad("rotation is not a unit rotation"));
+        return Err(invalid("rotation is not a unit rotation"));
     }
     // Speeds are not limited here: a game may set any velocity between steps,
     // and the step clamps it (see `World::step`), so the snapshot of such a world
@@ -116,19 +117,19 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
         let r = l.body(i)?;
         if r.live() {
             if r.generation == 0 {
-                return Err(bad("a live body with generation 0"));
+                return Err(invalid("a live body with generation 0"));
             }
             if r.index() >= l.props {
-                return Err(bad("a body's properties index is out of range"));
+                return Err(invalid("a body's properties index is out of range"));
             }
             check_motion(&r)?;
             live = live.saturating_add(1);
         } else if r.out_of_bounds() {
-            return Err(bad("flags on a free slot"));
+            return Err(invalid("flags on a free slot"));
         }
     }
     if live != l.bodies.len {
-        return Err(bad("live body count does not match"));
+        return Err(invalid("live body count does not match"));
     }
     check_free_list(l.bodies, |i| {
         let r = l.body(i)?;
@@ -145,7 +146,7 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
         if g != StoredGenerator::Free {
             live = live.saturating_add(1);
             if generation == 0 {
-                return Err(bad("a live generator with generation 0"));
+                return Err(invalid("a live generator with generation 0"));
             }
         }
         let snapshot_custom = g == StoredGenerator::Custom;
@@ -154,10 +155,10 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
         }
     }
     if live != l.generators.len {
-        return Err(bad("live generator count does not match"));
+        return Err(invalid("live generator count does not match"));
     }
     check_free_list(l.generators, |i| {
-        let (_, next, g) = l.generators().nth(i as usize).ok_or_else(|| bad("truncated"))??;
+        let (_, next, g) = l.generators().nth(i as usize).ok_or_else(|| invalid("truncated"))??;
         Ok((g == StoredGenerator::Free).then_some(next))
     })?;
     // Arbiters: sorted by key, at most two points, a state that persists.
@@ -169,17 +170,17 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
         let a = l.arbiter(i)?;
         let key = a.key();
         if a.a.index() == a.b.index() || last.is_some_and(|k| k >= key) {
-            return Err(bad("arbiters out of order"));
+            return Err(invalid("arbiters out of order"));
         }
         last = Some(key);
         if !live_body(l, a.a)? || !live_body(l, a.b)? {
-            return Err(bad("an arbiter names a body that is not in the snapshot"));
+            return Err(invalid("an arbiter names a body that is not in the snapshot"));
         }
-        let state = ArbiterState::from_u8(a.state).ok_or_else(|| bad("unknown arbiter state"))?;
+        let state = ArbiterState::from_u8(a.state).ok_or_else(|| invalid("unknown arbiter state"))?;
         if !matches!(state, ArbiterState::Contact | ArbiterState::Ignoring | ArbiterState::Separated)
             || a.count > 2
         {
-            return Err(bad("an arbiter in a state that does not persist"));
+            return Err(invalid("an arbiter in a state that does not persist"));
         }
     }
     // Joints.
@@ -191,21 +192,22 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
         let r = l.joint(i)?;
         if let Some(j) = &r.joint {
             if r.generation == 0 {
-                return Err(bad("a live joint with generation 0"));
+                return Err(invalid("a live joint with generation 0"));
             }
-            crate::constraint::validate_params(&j.def).map_err(|_| bad("joint parameters out of range"))?;
+            crate::constraint::validate_params(&j.def)
+                .map_err(|_| invalid("joint parameters out of range"))?;
             let b_live = match j.def.body_b {
                 Some(b) => live_body(l, b)? && b.index() != j.def.body_a.index(),
                 None => true,
             };
             if !live_body(l, j.def.body_a)? || !b_live {
-                return Err(bad("a joint names a body that is not in the snapshot"));
+                return Err(invalid("a joint names a body that is not in the snapshot"));
             }
             live = live.saturating_add(1);
         }
     }
     if live != l.joints.len {
-        return Err(bad("live joint count does not match"));
+        return Err(invalid("live joint count does not match"));
     }
     check_free_list(l.joints, |i| {
         let r = l.joint(i)?;
