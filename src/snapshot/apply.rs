@@ -3,7 +3,7 @@
 //! lists, so handles, slot reuse and iteration order come back exactly; derived
 //! body data (radius, bounding box, inverse mass) is recomputed from the record.
 
-use super::layout::{BodyRecord, Layout, StoredGenerator};
+use super::layout::{BodyRecord, GeneratorRecord, Layout, StoredGenerator};
 use super::write::Props;
 use super::NO_LINK;
 use crate::arbiter::{Arbiter, ArbiterState};
@@ -44,7 +44,7 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
     w.bodies.finish_restore(l.bodies.used, slot_link(l.bodies.free_head), l.bodies.len);
     // Generators (a game's generators stay in their slots).
     for (i, rec) in l.generators().enumerate() {
-        let Ok((generation, next, g)) = rec else { continue };
+        let Ok(GeneratorRecord { generation, next, generator: g }) = rec else { continue };
         let i = i as u32;
         match g {
             StoredGenerator::Free => w.generators.write_slot(i, generation, slot_link(next), None, false),
@@ -68,10 +68,10 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
             count: a.count,
             ..Arbiter::EMPTY
         };
-        for (p, (id, normal, tangent)) in arb.points.iter_mut().zip(a.points) {
-            p.id = id;
-            p.normal_impulse = normal;
-            p.tangent_impulse = tangent;
+        for (p, stored) in arb.points.iter_mut().zip(a.points) {
+            p.id = stored.id;
+            p.normal_impulse = stored.normal_impulse;
+            p.tangent_impulse = stored.tangent_impulse;
         }
         if let Some(slot) = w.contacts.arbiters.get_mut(n) {
             *slot = arb;

@@ -194,9 +194,9 @@ impl<'b> Layout<'b> {
         let state = c.u8()?;
         let steps_separated = c.u32()?;
         let count = c.u8()?;
-        let mut points = [(0u16, ZERO, ZERO); 2];
+        let mut points = [PointRecord { id: 0, normal_impulse: ZERO, tangent_impulse: ZERO }; 2];
         for p in &mut points {
-            *p = (c.u16()?, c.scalar()?, c.scalar()?);
+            *p = PointRecord { id: c.u16()?, normal_impulse: c.scalar()?, tangent_impulse: c.scalar()? };
         }
         Ok(ArbiterRecord { a, b, state, steps_separated, count, points })
     }
@@ -268,8 +268,14 @@ impl StoredGenerator {
     }
 }
 
-/// One generator slot as stored: generation, free-list link, content.
-pub(super) type GeneratorRecord = (u32, u32, StoredGenerator);
+/// One generator slot as stored.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(super) struct GeneratorRecord {
+    pub(super) generation: u32,
+    /// The free-list successor (a free slot only).
+    pub(super) next: u32,
+    pub(super) generator: StoredGenerator,
+}
 
 pub(super) struct GeneratorIter<'b> {
     c: Cursor<'b>,
@@ -322,7 +328,7 @@ fn read_generator(c: &mut Cursor<'_>) -> Result<GeneratorRecord, Error> {
         4 => StoredGenerator::Custom,
         _ => return Err(invalid("unknown generator kind")),
     };
-    Ok((generation, next, g))
+    Ok(GeneratorRecord { generation, next, generator: g })
 }
 
 /// One arbiter as stored.
@@ -333,7 +339,16 @@ pub(super) struct ArbiterRecord {
     pub(super) state: u8,
     pub(super) steps_separated: u32,
     pub(super) count: u8,
-    pub(super) points: [(u16, Scalar, Scalar); 2],
+    pub(super) points: [PointRecord; 2],
+}
+
+/// One contact point of an arbiter as stored: its feature id and its
+/// accumulated (warm-start) impulses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct PointRecord {
+    pub(super) id: u16,
+    pub(super) normal_impulse: Scalar,
+    pub(super) tangent_impulse: Scalar,
 }
 
 impl ArbiterRecord {

@@ -7,7 +7,7 @@
 //! world, so a rejected snapshot leaves the world as it was, and `apply` cannot
 //! fail half-way.
 
-use super::layout::{Alloc, BodyRecord, Layout, StoredGenerator};
+use super::layout::{Alloc, BodyRecord, GeneratorRecord, Layout, StoredGenerator};
 use super::write::{paths_checksum, Props};
 use super::{invalid, NO_LINK};
 use crate::arbiter::ArbiterState;
@@ -138,7 +138,7 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
     // Generators.
     let mut live = 0u32;
     for (i, rec) in l.generators().enumerate() {
-        let (generation, _, g) = rec?;
+        let GeneratorRecord { generation, generator: g, .. } = rec?;
         let world_custom = matches!(w.generators.get_at(i as u32), Some(Generator::Custom(_)));
         if let Some(t) = g.targets() {
             check_targets(t)?;
@@ -158,7 +158,8 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
         return Err(invalid("live generator count does not match"));
     }
     check_free_list(l.generators, |i| {
-        let (_, next, g) = l.generators().nth(i as usize).ok_or_else(|| invalid("truncated"))??;
+        let GeneratorRecord { next, generator: g, .. } =
+            l.generators().nth(i as usize).ok_or_else(|| invalid("truncated"))??;
         Ok((g == StoredGenerator::Free).then_some(next))
     })?;
     // Arbiters: sorted by key, at most two points, a state that persists.
