@@ -1,6 +1,6 @@
 //! The record layouts of a snapshot: where each section starts ([`Layout`]) and
-//! how each record decodes (`BodyRecord`, `StoredGenerator`, `ArbiterRecord`,
-//! `JointRecord`, and the properties as `Props`).
+//! how each record decodes (`BodyRecord`, `GeneratorRecord`, `ArbiterRecord`
+//! with its `PointRecord`s, `JointRecord`, and the properties as `Props`).
 //!
 //! [`Layout::parse`] checks sizes only: the header, the version, that every
 //! section fits, the trailer, and nothing after it. Body, property, arbiter and
