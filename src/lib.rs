@@ -34,24 +34,59 @@
 //! ```
 //!
 //! # Layers
-//! * [`math`]: [`Scalar`] (Q32.32 fixed point) and the small `Copy` value types
-//!   [`Vector2`], [`Rot`], [`Transform`], [`Matrix22`], [`Rect`]; deterministic
-//!   [`math::trig`] for angles at the API edge.
+//! * [`math`]: [`Scalar`] (Q32.32 fixed point whose operators saturate) and the
+//!   small `Copy` value types [`Vector2`], [`Rot`], [`Transform`], [`Matrix22`],
+//!   [`Rect`]; deterministic [`math::trig`] for angles at the API edge.
 //! * [`geometry`]: [`PolygonPath`] (exact convex hull, area, centroid, inertia),
 //!   circles and [`MassData`].
 //! * [`arena`]: fixed-capacity slots with generational [`Handle`]s: a removed
 //!   object's handle is an error, never another object.
-//! * [`body`], [`force`]: bodies and force generators.
+//! * [`body`], [`force`], [`hook`]: bodies and their [`BodyDef`], force
+//!   generators, and [`Hook`], how a world holds a game's objects.
 //! * [`index`], [`collide`], [`arbiter`], [`handler`], [`collision`]: the broad
 //!   phase (a trait you can implement), the narrow phase (one file per shape pair),
 //!   the arbiter lifecycle and the callbacks.
 //! * [`constraint`]: the manual's spring, damped spring and rod, plus rope,
 //!   pivot (limits, motor) and weld joints, breakable; your own via [`Constraint`].
 //! * the solver: a sub-stepped soft contact and joint solver (Box2D v3's design).
-//! * [`world`]: [`World`], which owns everything and runs [`World::step`]: broad
-//!   phase → forces → narrow phase and callbacks → solve and integrate → limits →
-//!   `post_solve` → post-step callbacks.
+//! * [`limits`]: the ranges that stay exact, and the stage that keeps bodies in them.
+//! * [`world`]: [`World`], which owns everything and runs [`World::step`].
+//! * [`snapshot`]: the canonical encoding, restore (validate, then apply), the
+//!   state hash and `diff`.
 //!
+//! # Architecture: one concept per file
+//! ```text
+//! src/
+//!   lib.rs              this page
+//!   error.rs limits.rs  errors; the world's limits and the limits stage
+//!   hook.rs             Hook: a game's object, borrowed or boxed
+//!   math/               scalar/ (the number type; arith.rs: its operators) trig
+//!                       vector2 matrix22 rot rect
+//!   geometry/           polygon_path (hull, area, centroid, inertia) circle mass ray
+//!   arena.rs            fixed-capacity slots + generational handles
+//!   body.rs body_def.rs bodies; their definition
+//!   world/              mod (World, step entry, hooks) def (WorldDef, validation)
+//!                       storage (Storage, WorldBuffers, Capacities) bodies joints
+//!   step.rs             StepContext and the pipeline, in order: broad phase →
+//!                       forces → narrow phase and arbiter lifecycle → solve →
+//!                       limits → post_solve; then (in the world) broken joints
+//!                       and post-step callbacks
+//!   index/              SpatialIndex, brute_force, sort_and_sweep
+//!   collision.rs        the broad- and narrow-phase stages, the arbiter lifecycle
+//!   collide/            one file per shape pair, manifold
+//!   arbiter.rs          the manual's five states, ArbiterStore
+//!   force/              ForceGenerator, the built-ins, the forces stage
+//!   solver/             mod (the solve stage) body softness sweep
+//!                       contact/ (prepare, solve, restitution)
+//!   constraint/         def joint maths user, one file per joint kind
+//!   handler.rs query.rs collision handlers and post-step callbacks; world queries
+//!   snapshot/           write cursor layout validate apply diff
+//! ```
+//! Every stage is a function of the step's `StepContext` (`step.rs`) and the
+//! parts of the world it touches; nothing below `world/` uses [`World`] except
+//! the callbacks that get `&mut World` by design (post-step, joint break) and the
+//! `impl World` blocks that add API (queries, snapshots).
+
 //! # Features
 //! * `std` (default): implies `alloc`.
 //! * `alloc`: heap storage sized at run time ([`World::with_capacities`]), boxed
@@ -124,6 +159,7 @@ extern crate alloc;
 pub mod arbiter;
 pub mod arena;
 pub mod body;
+mod body_def;
 pub mod collide;
 pub mod collision;
 pub mod constraint;

@@ -5,7 +5,7 @@
 //! about 46,340. Every limit here is chosen so that what the engine computes from
 //! validated input (positions, speeds, inertias, squared relative distances)
 //! stays inside that range; inputs beyond a limit are an `Err` at the API edge,
-//! and [`enforce`] holds moving bodies to the speed limits and the bounds after
+//! and the limits stage (`enforce`) holds moving bodies to the speed limits and the bounds after
 //! every step.
 
 use crate::arena::Arena;
@@ -29,7 +29,7 @@ pub const MAX_BODY_RADIUS: Scalar = crate::geometry::circle::MAX_CIRCLE_RADIUS;
 
 /// Highest speed limit a world may be configured with, in m/s.
 ///
-/// With the longest time step ([`MAX_TIME_STEP`](crate::MAX_TIME_STEP)) a body
+/// With the longest time step ([`MAX_TIME_STEP`]) a body
 /// moves at most 512 m per step, and squared speeds (≤ 8.4e6) stay exact.
 pub const MAX_LINEAR_SPEED_LIMIT: Scalar = Scalar::from_int(2048);
 

@@ -31,7 +31,7 @@ fn round_trip(w: &mut World<'_>) {
 /// null (or stale) handle. `Targets::bodies` accepts it ("stale handles are
 /// ignored"), `snapshot` writes it, and `restore` rejects the world's own snapshot
 /// with `InvalidSnapshot { what: "a null generator target" }`
-/// (src/snapshot/read.rs, `check_targets`).
+/// (then in src/snapshot/read.rs, `check_targets`; now src/snapshot/validate.rs).
 #[test]
 fn a_generator_targeting_a_null_handle_survives_a_snapshot_round_trip() {
     let mut w = world();
@@ -73,12 +73,11 @@ fn a_body_given_a_huge_spin_between_steps_survives_a_snapshot_round_trip() {
 
 /// A snapshot whose joint names a body slot far beyond the world's capacity.
 /// `restore` must reject it, or accept it and leave a world that steps: the brief
-/// of `restore` is "truncated, corrupted or foreign bytes are an `Err`". Today it
-/// is accepted (src/snapshot/read.rs, `validate`: joint records are checked with
-/// `validate_params` only, their body handles are not checked against the
-/// snapshot's live bodies), and the next step panics in `Arena::get2_at_mut`
-/// (src/arena.rs:360, `split_at_mut(j)` with `j` past the slots) called from the
-/// joint solver (src/solver.rs). Found by `snapshot_restore` (a `SetWord`
+/// of `restore` is "truncated, corrupted or foreign bytes are an `Err`". When it
+/// was found it was accepted (joint records were checked with `validate_params`
+/// only, not against the snapshot's live bodies; `src/snapshot/validate.rs` now
+/// does) and the next step panicked in `Arena::get2_at_mut` (`split_at_mut(j)`
+/// with `j` past the slots) called from the joint solver. Found by `snapshot_restore` (a `SetWord`
 /// corruption of a pile of boxes joined by rods).
 #[test]
 fn a_snapshot_whose_joint_names_a_missing_body_is_rejected_or_harmless() {

@@ -2,7 +2,7 @@
 
 use core::fmt;
 
-use super::read::Layout;
+use super::layout::Layout;
 use crate::error::Error;
 
 /// Which object of the state a difference is in.
@@ -111,10 +111,10 @@ pub fn diff(a: &[u8], b: &[u8]) -> Result<Option<Difference>, Error> {
     for (i, (ga, gb)) in la.generators().zip(lb.generators()).enumerate() {
         let (ga, gb) = (ga?, gb?);
         let object = Object::Generator(i as u32);
-        if ga.0 != gb.0 || ga.1 != gb.1 {
+        if ga.generation != gb.generation || ga.next != gb.next {
             return found(object, "slot");
         }
-        if ga.2 != gb.2 {
+        if ga.generator != gb.generator {
             return found(object, "parameters");
         }
     }
@@ -130,9 +130,15 @@ pub fn diff(a: &[u8], b: &[u8]) -> Result<Option<Difference>, Error> {
             (aa.state != ab.state, "state"),
             (aa.steps_separated != ab.steps_separated, "steps since separation"),
             (aa.count != ab.count, "contact point count"),
-            (aa.points.iter().zip(&ab.points).any(|(p, q)| p.0 != q.0), "feature id"),
-            (aa.points.iter().zip(&ab.points).any(|(p, q)| p.1 != q.1), "normal impulse"),
-            (aa.points.iter().zip(&ab.points).any(|(p, q)| p.2 != q.2), "friction impulse"),
+            (aa.points.iter().zip(&ab.points).any(|(p, q)| p.id != q.id), "feature id"),
+            (
+                aa.points.iter().zip(&ab.points).any(|(p, q)| p.normal_impulse != q.normal_impulse),
+                "normal impulse",
+            ),
+            (
+                aa.points.iter().zip(&ab.points).any(|(p, q)| p.tangent_impulse != q.tangent_impulse),
+                "friction impulse",
+            ),
         ];
         if let Some((_, field)) = fields.iter().find(|(differs, _)| *differs) {
             return found(object, field);

@@ -32,8 +32,11 @@
 //! step reports in `post_solve`, a joint's `step_impulse`) are recomputed by the
 //! next step and are not saved.
 
+mod apply;
+mod cursor;
 mod diff;
-mod read;
+mod layout;
+mod validate;
 mod write;
 
 pub use diff::{diff, Difference, Object};
@@ -62,6 +65,11 @@ const OUT_OF_BOUNDS: u32 = 1 << 30;
 const LINK_MASK: u32 = (1 << 30) - 1;
 /// "No successor" in a 30-bit link.
 const NO_LINK: u32 = LINK_MASK;
+
+/// The error for bytes that are not a valid snapshot; `what` says which check failed.
+fn invalid(what: &'static str) -> Error {
+    Error::InvalidSnapshot { what }
+}
 
 /// Receives the canonical byte stream (a hasher, a counter, or a buffer).
 pub(crate) trait Sink {
@@ -198,9 +206,9 @@ impl World<'_> {
     /// or paths, more objects than this world's capacities, custom generators in
     /// other slots). On error the world is unchanged.
     pub fn restore(&mut self, buf: &[u8]) -> Result<(), Error> {
-        let layout = read::Layout::parse(buf)?;
-        read::validate(self, &layout)?;
-        read::apply(self, &layout);
+        let layout = layout::Layout::parse(buf)?;
+        validate::validate(self, &layout)?;
+        apply::apply(self, &layout);
         Ok(())
     }
 }

@@ -11,7 +11,7 @@ use crate::math::{Rect, Vector2};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct WorldDef {
     /// The region bodies live in. A body whose centre leaves it is frozen and
-    /// reported (see [`Body::is_out_of_bounds`]).
+    /// reported (see [`Body::is_out_of_bounds`](crate::Body::is_out_of_bounds)).
     pub bounds: Rect,
     /// Speed limit for every body, m/s (default 400, at most
     /// [`MAX_LINEAR_SPEED_LIMIT`]). Applied after forces and after the solver.

@@ -70,7 +70,7 @@ impl<'a> World<'a> {
     /// # Errors
     /// [`Error::StaleHandle`]; [`Error::InvalidOperation`] for a body with itself;
     /// [`Error::CapacityFull`] when
-    /// [`MAX_USER_CONSTRAINTS`] are in use.
+    /// [`MAX_USER_CONSTRAINTS`](crate::constraint::MAX_USER_CONSTRAINTS) are in use.
     pub fn add_constraint(
         &mut self,
         a: BodyHandle,

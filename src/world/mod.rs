@@ -7,7 +7,7 @@
 //! the same code on both. Nothing ever grows: a full store is an
 //! [`Error::CapacityFull`], and a call that returns an error has changed nothing.
 //!
-//! The world owns the state and runs the step ([`crate::step`]), whose stages
+//! The world owns the state and runs the step (`step.rs`), whose stages
 //! each get the parts they work on, never the world; only the hooks that are
 //! given `&mut World` by design (post-step callbacks, the joint-break callback)
 //! run with it, after the stages.
@@ -131,7 +131,7 @@ impl<'a> World<'a> {
 
     // ---- the step -------------------------------------------------------------
 
-    /// Advances the simulation by `dt` seconds: the stages of [`crate::step`],
+    /// Advances the simulation by `dt` seconds: the stages of the step pipeline (`step.rs`),
     /// then the broken joints' callback and the post-step callbacks.
     ///
     /// # Errors

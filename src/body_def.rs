@@ -1,0 +1,188 @@
+//! [`BodyDef`]: everything needed to create a body, with a default for every
+//! option, and [`MassSpec`] (mass from a density or given outright). The world
+//! validates a definition when it builds the body
+//! ([`World::add_body`](crate::World::add_body)).
+
+use crate::body::{BodyType, PathHandle, Shape};
+use crate::math::scalar::{self, Scalar, ZERO};
+use crate::math::{Rot, Vector2};
+
+/// How the mass of a new body is chosen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MassSpec {
+    /// Mass = density (kg/m²) × area.
+    Density(Scalar),
+    /// This total mass in kg; 0 makes the body static (as in the manual).
+    Mass(Scalar),
+}
+
+/// Everything needed to create a body; every option has a default.
+///
+/// ```
+/// use arphysics::{BodyDef, Vector2, Scalar};
+/// let ball = BodyDef::circle(Scalar::from_num(5))
+///     .position(Vector2::from_int(50, 50))
+///     .mass(Scalar::from_num(5));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BodyDef {
+    /// Shape. Polygon paths must be added to the world first.
+    pub shape: Shape,
+    /// Static, kinematic or dynamic (default dynamic).
+    pub body_type: BodyType,
+    /// Position of the centre of mass, m (default origin).
+    pub position: Vector2,
+    /// Rotation (default none).
+    pub rotation: Rot,
+    /// Linear velocity, m/s (default 0).
+    pub linear_velocity: Vector2,
+    /// Angular velocity, rad/s, counter-clockwise positive (default 0).
+    pub angular_velocity: Scalar,
+    /// Mass or density (default density 1 kg/m²).
+    pub mass: MassSpec,
+    /// Coulomb friction coefficient, ≥ 0 (default 0.6).
+    pub friction: Scalar,
+    /// Restitution (bounciness) in [0, 1] (default 0).
+    pub restitution: Scalar,
+    /// Collision group bits: two bodies sharing any bit never collide (default 0).
+    pub collision_groups: u32,
+    /// Collision level, selects the collision handler (default 0 = no level).
+    pub collision_level: u32,
+    /// A word for the game, e.g. its entity id (default 0). Never read by the engine.
+    pub user_data: u64,
+}
+
+impl BodyDef {
+    /// A dynamic circle of `radius` metres.
+    #[must_use]
+    pub fn circle(radius: Scalar) -> Self {
+        Self::with_shape(Shape::Circle { radius })
+    }
+
+    /// A dynamic polygon using a path added with
+    /// [`World::add_path`](crate::World::add_path).
+    #[must_use]
+    pub fn polygon(path: PathHandle) -> Self {
+        Self::with_shape(Shape::Polygon(path))
+    }
+
+    fn with_shape(shape: Shape) -> Self {
+        Self {
+            shape,
+            body_type: BodyType::Dynamic,
+            position: Vector2::ZERO,
+            rotation: Rot::IDENTITY,
+            linear_velocity: Vector2::ZERO,
+            angular_velocity: ZERO,
+            mass: MassSpec::Density(scalar::ONE),
+            friction: Scalar::lit("0.6"),
+            restitution: ZERO,
+            collision_groups: 0,
+            collision_level: 0,
+            user_data: 0,
+        }
+    }
+
+    /// Sets the position of the centre of mass (m).
+    #[must_use]
+    pub fn position(mut self, p: Vector2) -> Self {
+        self.position = p;
+        self
+    }
+
+    /// Sets the rotation from an angle in radians.
+    #[must_use]
+    pub fn angle(mut self, radians: Scalar) -> Self {
+        self.rotation = Rot::from_angle(radians);
+        self
+    }
+
+    /// Sets the rotation.
+    #[must_use]
+    pub fn rotation(mut self, q: Rot) -> Self {
+        self.rotation = q;
+        self
+    }
+
+    /// Sets the linear velocity (m/s).
+    #[must_use]
+    pub fn linear_velocity(mut self, v: Vector2) -> Self {
+        self.linear_velocity = v;
+        self
+    }
+
+    /// Sets the angular velocity (rad/s).
+    #[must_use]
+    pub fn angular_velocity(mut self, w: Scalar) -> Self {
+        self.angular_velocity = w;
+        self
+    }
+
+    /// Sets the body type.
+    #[must_use]
+    pub fn body_type(mut self, t: BodyType) -> Self {
+        self.body_type = t;
+        self
+    }
+
+    /// Makes the body static (the manual's `setStatic`).
+    #[must_use]
+    pub fn static_body(self) -> Self {
+        self.body_type(BodyType::Static)
+    }
+
+    /// Makes the body kinematic.
+    #[must_use]
+    pub fn kinematic(self) -> Self {
+        self.body_type(BodyType::Kinematic)
+    }
+
+    /// Sets the total mass in kg. As in the manual, a mass of 0 makes the body static.
+    #[must_use]
+    pub fn mass(mut self, kg: Scalar) -> Self {
+        self.mass = MassSpec::Mass(kg);
+        self
+    }
+
+    /// Sets the density in kg/m² (mass = density × area).
+    #[must_use]
+    pub fn density(mut self, kg_per_m2: Scalar) -> Self {
+        self.mass = MassSpec::Density(kg_per_m2);
+        self
+    }
+
+    /// Sets the friction coefficient (≥ 0).
+    #[must_use]
+    pub fn friction(mut self, mu: Scalar) -> Self {
+        self.friction = mu;
+        self
+    }
+
+    /// Sets the restitution, 0 (no bounce) to 1 (elastic).
+    #[must_use]
+    pub fn restitution(mut self, e: Scalar) -> Self {
+        self.restitution = e;
+        self
+    }
+
+    /// Sets the collision group bits.
+    #[must_use]
+    pub fn collision_groups(mut self, bits: u32) -> Self {
+        self.collision_groups = bits;
+        self
+    }
+
+    /// Sets the collision level.
+    #[must_use]
+    pub fn collision_level(mut self, level: u32) -> Self {
+        self.collision_level = level;
+        self
+    }
+
+    /// Sets the game's user data word.
+    #[must_use]
+    pub fn user_data(mut self, data: u64) -> Self {
+        self.user_data = data;
+        self
+    }
+}

@@ -1,0 +1,110 @@
+//! The apply step of a restore: writes a snapshot that `validate` accepted into
+//! the world. Arenas are rewritten slot by slot with their generations and free
+//! lists, so handles, slot reuse and iteration order come back exactly; derived
+//! body data (radius, bounding box, inverse mass) is recomputed from the record.
+
+use super::layout::{BodyRecord, GeneratorRecord, Layout, StoredGenerator};
+use super::write::Props;
+use super::NO_LINK;
+use crate::arbiter::{Arbiter, ArbiterState};
+use crate::arena::NO_SLOT;
+use crate::body::compute_aabb;
+use crate::body::{Body, BodyHandle, Shape};
+use crate::geometry::MassData;
+use crate::math::scalar::ZERO;
+use crate::world::World;
+
+fn slot_link(link: u32) -> u32 {
+    if link == NO_LINK {
+        NO_SLOT
+    } else {
+        link
+    }
+}
+
+/// Writes a validated snapshot into the world. Cannot fail: every read was
+/// checked by `validate` (a failed read here leaves that slot empty).
+pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
+    w.step_count = l.step_count;
+    // Bodies.
+    for i in 0..l.bodies.used {
+        let Ok(r) = l.body(i) else { continue };
+        if r.live() {
+            let Ok(p) = l.props(r.index()) else { continue };
+            let mut body = body_from(&p, &r);
+            body.radius = match p.shape {
+                Shape::Circle { radius } => radius,
+                Shape::Polygon(h) => w.paths.get(h).map_or(ZERO, |path| path.radius()),
+            };
+            body.aabb = compute_aabb(&body, &w.paths);
+            w.bodies.write_slot(i, r.generation, NO_SLOT, Some(body), false);
+        } else {
+            w.bodies.write_slot(i, r.generation, slot_link(r.index()), None, false);
+        }
+    }
+    w.bodies.finish_restore(l.bodies.used, slot_link(l.bodies.free_head), l.bodies.len);
+    // Generators (a game's generators stay in their slots).
+    for (i, rec) in l.generators().enumerate() {
+        let Ok(GeneratorRecord { generation, next, generator: g }) = rec else { continue };
+        let i = i as u32;
+        match g {
+            StoredGenerator::Free => w.generators.write_slot(i, generation, slot_link(next), None, false),
+            StoredGenerator::Custom => w.generators.write_slot(i, generation, NO_SLOT, None, true),
+            builtin => w.generators.write_slot(i, generation, NO_SLOT, builtin.into_generator(), false),
+        }
+    }
+    w.generators.finish_restore(l.generators.used, slot_link(l.generators.free_head), l.generators.len);
+    // Arbiters.
+    w.arbiters.clear();
+    for i in 0..l.arbiters {
+        let Ok(a) = l.arbiter(i) else { continue };
+        let level = |h: BodyHandle| w.bodies.get(h).map_or(0, |b| b.collision_level);
+        let mut arb = Arbiter {
+            body_a: a.a,
+            body_b: a.b,
+            level_a: level(a.a),
+            level_b: level(a.b),
+            state: ArbiterState::from_u8(a.state).unwrap_or(ArbiterState::Separated),
+            steps_separated: a.steps_separated,
+            count: a.count,
+            ..Arbiter::EMPTY
+        };
+        for (p, stored) in arb.points.iter_mut().zip(a.points) {
+            p.id = stored.id;
+            p.normal_impulse = stored.normal_impulse;
+            p.tangent_impulse = stored.tangent_impulse;
+        }
+        w.arbiters.push(arb);
+    }
+    // Joints.
+    for i in 0..l.joints.used {
+        let Ok(r) = l.joint(i) else { continue };
+        let next = if r.joint.is_some() { NO_SLOT } else { slot_link(r.next) };
+        w.joints.write_slot(i, r.generation, next, r.joint, false);
+    }
+    w.joints.finish_restore(l.joints.used, slot_link(l.joints.free_head), l.joints.len);
+    w.post_step.clear();
+}
+
+fn body_from(p: &Props, r: &BodyRecord) -> Body {
+    let mut b = Body::ground();
+    b.position = r.position;
+    b.rotation = r.rotation;
+    b.linear_velocity = r.linear_velocity;
+    b.angular_velocity = r.angular_velocity;
+    b.shape = p.shape;
+    b.body_type = p.body_type;
+    b.mass = MassData {
+        mass: p.mass,
+        inv_mass: p.mass.recip(),
+        inertia: p.inertia,
+        inv_inertia: p.inertia.recip(),
+    };
+    b.friction = p.friction;
+    b.restitution = p.restitution;
+    b.collision_groups = p.groups;
+    b.collision_level = p.level;
+    b.user_data = p.user_data;
+    b.out_of_bounds = r.out_of_bounds();
+    b
+}

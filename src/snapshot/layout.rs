@@ -1,0 +1,421 @@
+//! The record layouts of a snapshot: where each section starts ([`Layout`]) and
+//! how each record decodes (`BodyRecord`, `GeneratorRecord`, `ArbiterRecord`
+//! with its `PointRecord`s, `JointRecord`, and the properties as `Props`).
+//!
+//! [`Layout::parse`] checks sizes only: the header, the version, that every
+//! section fits, the trailer, and nothing after it. Body, property, arbiter and
+//! joint records have a fixed size, so record `i` is read on demand at a computed
+//! offset, without copying the buffer; generators vary in size and are read in
+//! order. Whether the values make sense for a world is `validate`'s job.
+
+use super::cursor::Cursor;
+use super::write::Props;
+use super::{
+    invalid, ARBITER_RECORD, BODY_RECORD, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD,
+    TRAILER, VERSION,
+};
+use crate::body::{BodyHandle, BodyType, Shape};
+use crate::constraint::{Joint, JointDef, JointKind, MaxTorque, Motor};
+use crate::error::Error;
+use crate::force::{
+    Generator, GravityForceGenerator, GravityToPointForceGenerator, LinearForceGenerator, Targets,
+};
+use crate::math::scalar::{Scalar, ZERO};
+use crate::math::{Rot, Vector2};
+use crate::world::{WorldDef, MAX_FORCE_GENERATORS};
+
+/// Allocator state of an arena in a snapshot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Alloc {
+    pub(super) used: u32,
+    pub(super) free_head: u32,
+    pub(super) len: u32,
+}
+
+/// Where everything is in a snapshot buffer. Parsing checks the sizes only.
+pub(super) struct Layout<'b> {
+    pub(super) buf: &'b [u8],
+    pub(super) step_count: u64,
+    pub(super) def: WorldDef,
+    pub(super) paths: u64,
+    pub(super) props_at: usize,
+    pub(super) props: u32,
+    pub(super) bodies: Alloc,
+    pub(super) bodies_at: usize,
+    pub(super) generators: Alloc,
+    pub(super) generators_at: usize,
+    pub(super) arbiters: u32,
+    pub(super) arbiters_at: usize,
+    pub(super) joints: Alloc,
+    pub(super) joints_at: usize,
+}
+
+fn read_alloc(c: &mut Cursor<'_>) -> Result<Alloc, Error> {
+    Ok(Alloc { used: c.u32()?, free_head: c.u32()?, len: c.u32()? })
+}
+
+/// `n` records of `size` bytes must fit in what is left.
+fn skip_records(c: &mut Cursor<'_>, n: u32, size: usize) -> Result<(), Error> {
+    let total = (n as usize).checked_mul(size).ok_or_else(|| invalid("truncated"))?;
+    c.skip(total)
+}
+
+fn read_def(c: &mut Cursor<'_>) -> Result<WorldDef, Error> {
+    let bounds = c.rect()?;
+    let max_linear_speed = c.scalar()?;
+    let max_angular_speed = c.scalar()?;
+    let substeps = c.u32()?;
+    let contact_hertz = c.scalar()?;
+    let contact_damping_ratio = c.scalar()?;
+    let contact_push_speed = c.scalar()?;
+    let restitution_threshold = c.scalar()?;
+    let arbiter_persistence = c.u32()?;
+    Ok(WorldDef {
+        bounds,
+        max_linear_speed,
+        max_angular_speed,
+        substeps,
+        contact_hertz,
+        contact_damping_ratio,
+        contact_push_speed,
+        restitution_threshold,
+        arbiter_persistence,
+    })
+}
+
+impl<'b> Layout<'b> {
+    pub(super) fn parse(buf: &'b [u8]) -> Result<Self, Error> {
+        let mut c = Cursor::at(buf, 0);
+        if &c.take::<4>()? != MAGIC {
+            return Err(invalid("not a snapshot (no ARPS header)"));
+        }
+        if c.u32()? != VERSION {
+            return Err(invalid("another snapshot format version"));
+        }
+        let step_count = c.u64()?;
+        let def = read_def(&mut c)?;
+        let paths = c.u64()?;
+        let props = c.u32()?;
+        let props_at = c.pos();
+        skip_records(&mut c, props, PROPS_RECORD)?;
+        let bodies = read_alloc(&mut c)?;
+        let bodies_at = c.pos();
+        skip_records(&mut c, bodies.used, BODY_RECORD)?;
+        let generators = read_alloc(&mut c)?;
+        if generators.used as usize > MAX_FORCE_GENERATORS {
+            return Err(invalid("more generator slots than any world has"));
+        }
+        let generators_at = c.pos();
+        for _ in 0..generators.used {
+            read_generator(&mut c)?;
+        }
+        let arbiters = c.u32()?;
+        let arbiters_at = c.pos();
+        skip_records(&mut c, arbiters, ARBITER_RECORD)?;
+        let joints = read_alloc(&mut c)?;
+        let joints_at = c.pos();
+        skip_records(&mut c, joints.used, JOINT_RECORD)?;
+        if &c.take::<4>()? != TRAILER {
+            return Err(invalid("no ARPE trailer"));
+        }
+        if c.pos() != buf.len() {
+            return Err(invalid("bytes after the trailer"));
+        }
+        Ok(Self {
+            buf,
+            step_count,
+            def,
+            paths,
+            props_at,
+            props,
+            bodies,
+            bodies_at,
+            generators,
+            generators_at,
+            arbiters,
+            arbiters_at,
+            joints,
+            joints_at,
+        })
+    }
+
+    fn record(&self, at: usize, i: u32, size: usize) -> Cursor<'b> {
+        Cursor::at(self.buf, at.saturating_add((i as usize).saturating_mul(size)))
+    }
+
+    pub(super) fn props(&self, i: u32) -> Result<Props, Error> {
+        let mut c = self.record(self.props_at, i, PROPS_RECORD);
+        let shape = match c.u8()? {
+            0 => Shape::Circle { radius: c.scalar()? },
+            1 => Shape::Polygon(crate::body::PathHandle::from_parts(c.u32()?, c.u32()?)),
+            _ => return Err(invalid("unknown shape")),
+        };
+        let body_type = match c.u8()? {
+            0 => BodyType::Static,
+            1 => BodyType::Kinematic,
+            2 => BodyType::Dynamic,
+            _ => return Err(invalid("unknown body type")),
+        };
+        Ok(Props {
+            shape,
+            body_type,
+            mass: c.scalar()?,
+            inertia: c.scalar()?,
+            friction: c.scalar()?,
+            restitution: c.scalar()?,
+            groups: c.u32()?,
+            level: c.u32()?,
+            user_data: c.u64()?,
+        })
+    }
+
+    pub(super) fn body(&self, i: u32) -> Result<BodyRecord, Error> {
+        let mut c = self.record(self.bodies_at, i, BODY_RECORD);
+        let generation = c.u32()?;
+        let link = c.u32()?;
+        Ok(BodyRecord {
+            generation,
+            link,
+            position: c.vector()?,
+            rotation: c.rot()?,
+            linear_velocity: c.vector()?,
+            angular_velocity: c.scalar()?,
+        })
+    }
+
+    pub(super) fn generators(&self) -> GeneratorIter<'b> {
+        GeneratorIter { c: Cursor::at(self.buf, self.generators_at), left: self.generators.used }
+    }
+
+    pub(super) fn arbiter(&self, i: u32) -> Result<ArbiterRecord, Error> {
+        let mut c = self.record(self.arbiters_at, i, ARBITER_RECORD);
+        let a = BodyHandle::from_parts(c.u32()?, c.u32()?);
+        let b = BodyHandle::from_parts(c.u32()?, c.u32()?);
+        let state = c.u8()?;
+        let steps_separated = c.u32()?;
+        let count = c.u8()?;
+        let mut points = [PointRecord { id: 0, normal_impulse: ZERO, tangent_impulse: ZERO }; 2];
+        for p in &mut points {
+            *p = PointRecord { id: c.u16()?, normal_impulse: c.scalar()?, tangent_impulse: c.scalar()? };
+        }
+        Ok(ArbiterRecord { a, b, state, steps_separated, count, points })
+    }
+
+    pub(super) fn joint(&self, i: u32) -> Result<JointRecord, Error> {
+        let mut c = self.record(self.joints_at, i, JOINT_RECORD);
+        let generation = c.u32()?;
+        let next = c.u32()?;
+        let joint = if c.bool()? { Some(read_joint(&mut c)?) } else { None };
+        Ok(JointRecord { generation, next, joint })
+    }
+}
+
+/// One body slot as stored.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct BodyRecord {
+    pub(super) generation: u32,
+    pub(super) link: u32,
+    pub(super) position: Vector2,
+    pub(super) rotation: Rot,
+    pub(super) linear_velocity: Vector2,
+    pub(super) angular_velocity: Scalar,
+}
+
+impl BodyRecord {
+    pub(super) fn live(&self) -> bool {
+        self.link & LIVE != 0
+    }
+    pub(super) fn out_of_bounds(&self) -> bool {
+        self.link & OUT_OF_BOUNDS != 0
+    }
+    pub(super) fn index(&self) -> u32 {
+        self.link & LINK_MASK
+    }
+}
+
+/// A generator as stored.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(super) enum StoredGenerator {
+    /// A free slot.
+    Free,
+    /// A game's generator (not stored; must be in the world's slot).
+    Custom,
+    /// A built-in generator.
+    Linear(LinearForceGenerator),
+    /// A built-in generator.
+    Gravity(GravityForceGenerator),
+    /// A built-in generator.
+    GravityToPoint(GravityToPointForceGenerator),
+}
+
+impl StoredGenerator {
+    pub(super) fn into_generator<'a>(self) -> Option<Generator<'a>> {
+        match self {
+            Self::Free | Self::Custom => None,
+            Self::Linear(g) => Some(Generator::Linear(g)),
+            Self::Gravity(g) => Some(Generator::Gravity(g)),
+            Self::GravityToPoint(g) => Some(Generator::GravityToPoint(g)),
+        }
+    }
+
+    pub(super) fn targets(&self) -> Option<&Targets> {
+        match self {
+            Self::Free | Self::Custom => None,
+            Self::Linear(g) => Some(&g.targets),
+            Self::Gravity(g) => Some(&g.targets),
+            Self::GravityToPoint(g) => Some(&g.targets),
+        }
+    }
+}
+
+/// One generator slot as stored.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(super) struct GeneratorRecord {
+    pub(super) generation: u32,
+    /// The free-list successor (a free slot only).
+    pub(super) next: u32,
+    pub(super) generator: StoredGenerator,
+}
+
+pub(super) struct GeneratorIter<'b> {
+    c: Cursor<'b>,
+    left: u32,
+}
+
+impl Iterator for GeneratorIter<'_> {
+    type Item = Result<GeneratorRecord, Error>;
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.left == 0 {
+            return None;
+        }
+        self.left = self.left.saturating_sub(1);
+        Some(read_generator(&mut self.c))
+    }
+}
+
+fn read_targets(c: &mut Cursor<'_>) -> Result<Targets, Error> {
+    Ok(match c.u8()? {
+        0 => Targets::All,
+        1 => Targets::Level(c.u32()?),
+        2 => {
+            let n = c.u8()?;
+            let mut v = heapless::Vec::new();
+            for _ in 0..n {
+                let h = BodyHandle::from_parts(c.u32()?, c.u32()?);
+                v.push(h).map_err(|_| invalid("too many generator targets"))?;
+            }
+            Targets::Bodies(v)
+        }
+        _ => return Err(invalid("unknown generator targets")),
+    })
+}
+
+fn read_generator(c: &mut Cursor<'_>) -> Result<GeneratorRecord, Error> {
+    let generation = c.u32()?;
+    let next = c.u32()?;
+    let g = match c.u8()? {
+        0 => StoredGenerator::Free,
+        1 => StoredGenerator::Linear(LinearForceGenerator { force: c.vector()?, targets: read_targets(c)? }),
+        2 => StoredGenerator::Gravity(GravityForceGenerator {
+            gravity: c.vector()?,
+            targets: read_targets(c)?,
+        }),
+        3 => StoredGenerator::GravityToPoint(GravityToPointForceGenerator {
+            point: c.vector()?,
+            acceleration: c.scalar()?,
+            targets: read_targets(c)?,
+        }),
+        4 => StoredGenerator::Custom,
+        _ => return Err(invalid("unknown generator kind")),
+    };
+    Ok(GeneratorRecord { generation, next, generator: g })
+}
+
+/// One arbiter as stored.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct ArbiterRecord {
+    pub(super) a: BodyHandle,
+    pub(super) b: BodyHandle,
+    pub(super) state: u8,
+    pub(super) steps_separated: u32,
+    pub(super) count: u8,
+    pub(super) points: [PointRecord; 2],
+}
+
+/// One contact point of an arbiter as stored: its feature id and its
+/// accumulated (warm-start) impulses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct PointRecord {
+    pub(super) id: u16,
+    pub(super) normal_impulse: Scalar,
+    pub(super) tangent_impulse: Scalar,
+}
+
+impl ArbiterRecord {
+    pub(super) fn key(&self) -> (u32, u32) {
+        let (a, b) = (self.a.index(), self.b.index());
+        (a.min(b), a.max(b))
+    }
+}
+
+/// One joint slot as stored.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct JointRecord {
+    pub(super) generation: u32,
+    pub(super) next: u32,
+    pub(super) joint: Option<Joint>,
+}
+
+fn read_joint(c: &mut Cursor<'_>) -> Result<Joint, Error> {
+    let body_a = BodyHandle::from_parts(c.u32()?, c.u32()?);
+    let has_b = c.bool()?;
+    let hb = BodyHandle::from_parts(c.u32()?, c.u32()?);
+    let anchor_a = c.vector()?;
+    let anchor_b = c.vector()?;
+    let collide_connected = c.bool()?;
+    let breakable = c.bool()?;
+    let break_value = c.scalar()?;
+    let reference = c.rot()?;
+    let impulse = c.vector()?;
+    let angular_impulse = c.scalar()?;
+    let motor_impulse = c.scalar()?;
+    let limit_impulse = c.scalar()?;
+    let kind = match c.u8()? {
+        0 => JointKind::Spring { stiffness: c.scalar()?, rest_length: c.scalar()? },
+        1 => {
+            JointKind::DampedSpring { stiffness: c.scalar()?, damping: c.scalar()?, rest_length: c.scalar()? }
+        }
+        2 => JointKind::Rod { length: c.scalar()? },
+        3 => JointKind::Rope { max_length: c.scalar()? },
+        4 => {
+            let has_limits = c.bool()?;
+            let (lo, hi) = (c.scalar()?, c.scalar()?);
+            let has_motor = c.bool()?;
+            let speed = c.scalar()?;
+            let unlimited = c.bool()?;
+            let torque = c.scalar()?;
+            let max_torque = if unlimited { MaxTorque::Unlimited } else { MaxTorque::Limited(torque) };
+            JointKind::Pivot {
+                limits: has_limits.then_some((lo, hi)),
+                motor: has_motor.then_some(Motor { speed, max_torque }),
+            }
+        }
+        5 => JointKind::Weld,
+        _ => return Err(invalid("unknown joint kind")),
+    };
+    let def = JointDef {
+        body_a,
+        anchor_a,
+        body_b: has_b.then_some(hb),
+        anchor_b,
+        kind,
+        break_impulse: breakable.then_some(break_value),
+        collide_connected,
+    };
+    let mut j = Joint::restored(def, reference);
+    j.impulse = impulse;
+    j.angular_impulse = angular_impulse;
+    j.motor_impulse = motor_impulse;
+    j.limit_impulse = limit_impulse;
+    Ok(j)
+}
