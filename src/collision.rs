@@ -20,7 +20,9 @@ use crate::constraint::{Joint, JointMarker};
 use crate::error::Error;
 use crate::geometry::PolygonPath;
 use crate::handler::{CallbackContext, HandlerTable, PostStepQueue};
-use crate::index::{BruteForceIndex, PairSink, Proxy, SortAndSweepIndex, SpatialIndex, AUTO_THRESHOLD};
+use crate::index::{
+    dedup_sorted, BruteForceIndex, PairSink, Proxy, SortAndSweepIndex, SpatialIndex, AUTO_THRESHOLD,
+};
 use crate::limits::SPECULATIVE_DISTANCE;
 use crate::math::Scalar;
 use crate::step::StepContext;
@@ -84,20 +86,33 @@ pub(crate) fn should_collide(a: &Body, b: &Body) -> bool {
         && (a.collision_groups & b.collision_groups) == 0
 }
 
+/// What the broad phase found.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Candidates {
+    /// Candidate pairs left in `bp.pairs[..count]`, sorted and distinct.
+    pub(crate) count: usize,
+    /// Pairs left out because the pair buffer was full.
+    pub(crate) dropped: usize,
+}
+
 /// The broad phase: builds the proxies, runs the index, and leaves the sorted,
 /// deduplicated, filtered candidate pairs (as body slot pairs) in
-/// `bp.pairs[..n]`; returns `n`. Changes no simulation state.
+/// `bp.pairs[..n]`. Changes no simulation state.
+///
+/// When more pairs are found than the buffer holds, the lowest keys are kept
+/// and the rest counted as dropped (see [`PairSink`]).
 ///
 /// # Errors
-/// [`Error::CapacityFull`] when the bodies do not fit the proxy buffer or the
-/// pairs do not fit the contact buffer, or the merged arbiters would not fit.
+/// [`Error::CapacityFull`] when the bodies do not fit the proxy buffer; with
+/// `strict`, also when the pairs do not fit the contact buffer or the merged
+/// arbiters would not fit.
 pub(crate) fn broad_phase(
     ctx: &StepContext,
     bodies: &Arena<'_, Body>,
     joints: &Arena<'_, Joint, JointMarker>,
     bp: &mut BroadPhase<'_>,
     arbiters: &ArbiterStore<'_>,
-) -> Result<usize, Error> {
+) -> Result<Candidates, Error> {
     // Pairs held together by a joint that does not let them collide, sorted.
     let mut held = 0usize;
     for (_, j) in joints.iter() {
@@ -126,11 +141,23 @@ pub(crate) fn broad_phase(
         *pb = h.index();
         n = n.saturating_add(1);
     }
-    let proxies = bp.proxies.get(..n).unwrap_or(&[]);
-    let mut sink = PairSink { pairs: &mut bp.pairs, len: 0, overflowed: false };
-    match &mut bp.index {
+    let BroadPhase { index, auto_sweep, proxies, proxy_bodies, pairs, joint_pairs } = bp;
+    let proxies = proxies.get(..n).unwrap_or(&[]);
+    let proxy_bodies = proxy_bodies.get(..n).unwrap_or(&[]);
+    let held_pairs = joint_pairs.get(..held).unwrap_or(&[]);
+    // The pairs the engine wants, by proxy indices (i < j): in range, allowed
+    // by the manual's filter, not held apart by a joint.
+    let accept = |i: u32, j: u32| {
+        let (Some(&sa), Some(&sb)) = (proxy_bodies.get(i as usize), proxy_bodies.get(j as usize)) else {
+            return false;
+        };
+        let (Some(a), Some(b)) = (bodies.get_at(sa), bodies.get_at(sb)) else { return false };
+        should_collide(a, b) && held_pairs.binary_search(&(sa.min(sb), sa.max(sb))).is_err()
+    };
+    let mut sink = PairSink::new(pairs, ctx.strict_capacity, &accept);
+    match index {
         Index::Auto if n <= AUTO_THRESHOLD => BruteForceIndex.find_pairs(proxies, &mut sink),
-        Index::Auto => bp.auto_sweep.find_pairs(proxies, &mut sink),
+        Index::Auto => auto_sweep.find_pairs(proxies, &mut sink),
         Index::BruteForce(i) => i.find_pairs(proxies, &mut sink),
         Index::SortAndSweep(i) => i.find_pairs(proxies, &mut sink),
         Index::Custom(i) => i.find_pairs(proxies, &mut sink),
@@ -138,47 +165,39 @@ pub(crate) fn broad_phase(
     if sink.overflowed {
         return Err(Error::CapacityFull { what: "contact pair" });
     }
-    let reported = sink.len;
-    // Map proxy indices to body slots, dropping out-of-range reports and pairs
-    // the manual's filter rejects. Proxies are in slot order, so (i < j) maps to
-    // (slot_i < slot_j) and the key order is preserved.
-    let mut kept = 0usize;
-    for k in 0..reported {
-        let Some(&(i, j)) = bp.pairs.get(k) else { break };
-        let (Some(&sa), Some(&sb)) = (bp.proxy_bodies.get(i as usize), bp.proxy_bodies.get(j as usize))
+    let (reported, dropped) = (sink.len, sink.dropped);
+    // Proxy indices to body slots. Proxies are in slot order, so (i < j) maps
+    // to (slot_i < slot_j) and the key order is preserved.
+    let reported = pairs.get_mut(..reported).unwrap_or(&mut []);
+    for pair in reported.iter_mut() {
+        let (Some(&sa), Some(&sb)) = (proxy_bodies.get(pair.0 as usize), proxy_bodies.get(pair.1 as usize))
         else {
             continue;
         };
-        if i as usize >= n || j as usize >= n {
-            continue;
-        }
-        let (Some(a), Some(b)) = (bodies.get_at(sa), bodies.get_at(sb)) else { continue };
-        if !should_collide(a, b) {
-            continue;
-        }
-        let key = (sa.min(sb), sa.max(sb));
-        if bp.joint_pairs.get(..held).is_some_and(|h| h.binary_search(&key).is_ok()) {
-            continue;
-        }
-        if let Some(slot) = bp.pairs.get_mut(kept) {
-            *slot = (sa.min(sb), sa.max(sb));
-            kept = kept.saturating_add(1);
+        *pair = (sa.min(sb), sa.max(sb));
+    }
+    reported.sort_unstable();
+    let unique = dedup_sorted(reported);
+    if ctx.strict_capacity {
+        // The merge writes one arbiter per key of the union; check it fits first.
+        let union = merged_len(bp.candidates(unique), arbiters.live());
+        if union > arbiters.capacity() {
+            return Err(Error::CapacityFull { what: "arbiter" });
         }
     }
-    let pairs = bp.pairs.get_mut(..kept).unwrap_or(&mut []);
-    pairs.sort_unstable();
-    let unique = dedup_sorted(pairs);
-    // The merge writes one arbiter per key of the union; check it fits first.
-    let union = merged_len(bp.candidates(unique), arbiters.live());
-    if union > arbiters.capacity() {
-        return Err(Error::CapacityFull { what: "arbiter" });
-    }
-    Ok(unique)
+    Ok(Candidates { count: unique, dropped })
 }
 
 /// The narrow phase and the arbiter lifecycle for the `candidates` left by
 /// [`broad_phase`]: writes the new sorted arbiter array and runs `begin`,
 /// `pre_solve` and `end` in key order.
+///
+/// # A full arbiter store
+/// Keys are visited in order; once the store holds as many arbiters as it can,
+/// every later key is skipped: a new candidate pair is not collided (no
+/// callbacks), and an existing arbiter is dropped, with `end` if it had begun
+/// (so `begin` and `end` still pair up; the pair begins again once there is
+/// room). The lowest keys are kept. Returns how many keys were skipped.
 pub(crate) fn update_arbiters(
     ctx: &StepContext,
     candidates: &[(u32, u32)],
@@ -186,15 +205,13 @@ pub(crate) fn update_arbiters(
     paths: &Arena<'_, PolygonPath>,
     arbiters: &mut ArbiterStore<'_>,
     handlers: &mut HandlerTable<'_>,
-    post_step: &mut PostStepQueue,
-) {
+    post_step: &mut PostStepQueue<'_>,
+) -> usize {
     let (live, next) = arbiters.live_and_next();
     // Each arbiter is built in its output slot (a 256-byte record copied once,
     // not at every hand-over); a dropped one leaves `out` where it was, so
-    // the next overwrites it. `spare` stands in should the output be full,
-    // which `broad_phase`'s capacity check rules out.
-    let mut spare = Arbiter::EMPTY;
-    let (mut i, mut j, mut out) = (0usize, 0usize, 0usize);
+    // the next overwrites it.
+    let (mut i, mut j, mut out, mut skipped) = (0usize, 0usize, 0usize, 0usize);
     loop {
         let (cand, old) = (candidates.get(i).copied(), live.get(j));
         let (key, candidate, previous) = match (cand, old) {
@@ -213,9 +230,12 @@ pub(crate) fn update_arbiters(
         if previous.is_some() {
             j = j.saturating_add(1);
         }
-        let (arb, in_output) = match next.get_mut(out) {
-            Some(slot) => (slot, true),
-            None => (&mut spare, false),
+        let Some(arb) = next.get_mut(out) else {
+            skipped = skipped.saturating_add(1);
+            if let Some(p) = previous {
+                end_dropped(p, bodies, handlers, post_step);
+            }
+            continue;
         };
         if !pair_arbiter(bodies, key, previous, arb) {
             continue;
@@ -229,12 +249,34 @@ pub(crate) fn update_arbiters(
         };
         arb.friction = mix_friction(a.friction, b.friction);
         arb.restitution = mix_restitution(a.restitution, b.restitution);
-        let mut ctx_cb = CallbackContext { bodies, post_step: &mut *post_step };
-        if lifecycle(arb, &manifold, handlers, &mut ctx_cb, ctx.arbiter_persistence) && in_output {
+        let mut ctx_cb = CallbackContext { bodies, post_step: post_step.view() };
+        if lifecycle(arb, &manifold, handlers, &mut ctx_cb, ctx.arbiter_persistence) {
             out = out.saturating_add(1);
         }
     }
     arbiters.swap_in_next(out);
+    skipped
+}
+
+/// Calls `end` for an arbiter dropped from a full store, if it had begun and
+/// its bodies still exist.
+fn end_dropped(
+    arb: &Arbiter,
+    bodies: &Arena<'_, Body>,
+    handlers: &mut HandlerTable<'_>,
+    post_step: &mut PostStepQueue<'_>,
+) {
+    let begun = matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring);
+    if !begun || !bodies.contains(arb.body_a) || !bodies.contains(arb.body_b) {
+        return;
+    }
+    let mut ended = *arb;
+    ended.state = ArbiterState::Separated;
+    ended.count = 0;
+    if let Some(h) = handlers.get(ended.level_a, ended.level_b) {
+        let mut ctx = CallbackContext { bodies, post_step: post_step.view() };
+        h.end(&ended, &mut ctx);
+    }
 }
 
 /// Calls `post_solve` for every arbiter solved this step, in key order.
@@ -242,7 +284,7 @@ pub(crate) fn post_solve(
     bodies: &Arena<'_, Body>,
     arbiters: &ArbiterStore<'_>,
     handlers: &mut HandlerTable<'_>,
-    post_step: &mut PostStepQueue,
+    post_step: &mut PostStepQueue<'_>,
 ) {
     if handlers.is_empty() {
         return;
@@ -252,7 +294,7 @@ pub(crate) fn post_solve(
             continue;
         }
         if let Some(h) = handlers.get(arb.level_a, arb.level_b) {
-            let mut ctx = CallbackContext { bodies, post_step: &mut *post_step };
+            let mut ctx = CallbackContext { bodies, post_step: post_step.view() };
             h.post_solve(arb, &mut ctx);
         }
     }
@@ -265,7 +307,7 @@ pub(crate) fn end_arbiters_of(
     bodies: &Arena<'_, Body>,
     arbiters: &mut ArbiterStore<'_>,
     handlers: &mut HandlerTable<'_>,
-    post_step: &mut PostStepQueue,
+    post_step: &mut PostStepQueue<'_>,
 ) {
     arbiters.retain(|arb| {
         if arb.body_a.index() != index && arb.body_b.index() != index {
@@ -275,7 +317,7 @@ pub(crate) fn end_arbiters_of(
             let mut ended = *arb;
             ended.state = ArbiterState::Separated;
             if let Some(h) = handlers.get(ended.level_a, ended.level_b) {
-                let mut ctx = CallbackContext { bodies, post_step: &mut *post_step };
+                let mut ctx = CallbackContext { bodies, post_step: post_step.view() };
                 h.end(&ended, &mut ctx);
             }
         }
@@ -420,21 +462,6 @@ fn flip(mut m: Manifold) -> Manifold {
         core::mem::swap(&mut p.anchor_a, &mut p.anchor_b);
     }
     m
-}
-
-/// Removes adjacent duplicates in place; returns the new length.
-fn dedup_sorted(v: &mut [(u32, u32)]) -> usize {
-    let mut n = 0usize;
-    for k in 0..v.len() {
-        let Some(&x) = v.get(k) else { break };
-        if n == 0 || v.get(n.wrapping_sub(1)) != Some(&x) {
-            if let Some(slot) = v.get_mut(n) {
-                *slot = x;
-            }
-            n = n.saturating_add(1);
-        }
-    }
-    n
 }
 
 /// Size of the union of two key-sorted lists.

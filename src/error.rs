@@ -59,6 +59,13 @@ pub enum Error {
         /// What differs.
         what: &'static str,
     },
+    /// The heap could not provide the storage asked for (with `alloc`: a
+    /// world's buffers are reserved with `try_reserve`, never by aborting).
+    /// `what` names the buffer.
+    OutOfMemory {
+        /// The buffer.
+        what: &'static str,
+    },
     /// The operation does not apply to this object in its current state
     /// (for example setting the velocity of a static body). `what` says which.
     InvalidOperation {
@@ -85,6 +92,7 @@ impl fmt::Display for Error {
             Self::StaleHandle => f.write_str("the handle refers to an object that no longer exists"),
             Self::CapacityFull { what } => write!(f, "the {what} store is full"),
             Self::InvalidOperation { what } => write!(f, "invalid operation: {what}"),
+            Self::OutOfMemory { what } => write!(f, "the heap could not provide the {what} buffer"),
             Self::BufferTooSmall { needed } => {
                 write!(f, "the buffer is too small: {needed} bytes are needed")
             }

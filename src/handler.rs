@@ -11,13 +11,27 @@
 //! pair order (by the lower body slot, then the higher): during the narrow phase,
 //! `begin`, `pre_solve` and `end` as each pair's state changes; after the solver,
 //! `post_solve` for every solved pair in the same order; after the step, the
-//! post-step callbacks in the order they were registered. The order depends only on
-//! the simulation state, never on capacities or addresses.
+//! post-step callbacks in the order they were registered, then those they
+//! queued, round after round until none is left (see
+//! [`CallbackContext::add_post_step_callback`]). The order depends only on the
+//! simulation state, never on capacities or addresses.
+//!
+//! # The post-step queue is never state
+//! Every call that can queue a post-step callback drains the queue before it
+//! returns: `step` runs it to exhaustion (bounded by [`MAX_POST_STEP_ROUNDS`]),
+//! and a game's `remove_body` between steps runs the callbacks its `end`
+//! handlers queued before it returns. Between steps the queue is empty, so a
+//! snapshot has nothing to miss and `restore` nothing to lose. Its capacity is
+//! [`Capacities::post_step_callbacks`](crate::Capacities::post_step_callbacks);
+//! a refusal is an `Err` to the callback that asked and a count in the
+//! [`StepReport`](crate::StepReport).
 //!
 //! Handlers cannot change the world during the step: they see the arbiter and the
 //! bodies (read-only), and register post-step callbacks through the
 //! [`CallbackContext`] to remove bodies or make other changes safely afterwards.
 //! Removing a body during a step is impossible by construction.
+
+use managed::ManagedSlice;
 
 use crate::hook::Hook;
 
@@ -30,8 +44,15 @@ use crate::world::World;
 /// Most collision handlers (level pairs) a world can register.
 pub const MAX_COLLISION_HANDLERS: usize = 16;
 
-/// Most post-step callbacks one step can queue.
-pub const MAX_POST_STEP_CALLBACKS: usize = 64;
+/// The post-step queue capacity of [`WorldBuffers`](crate::WorldBuffers)
+/// unless its `CALLBACKS` parameter says otherwise.
+pub const DEFAULT_POST_STEP_CALLBACKS: usize = 64;
+
+/// Most rounds of post-step callbacks one drain runs: the callbacks queued
+/// when the drain starts are round 1, those they queue round 2, and so on. A
+/// bound so that a callback that always queues another cannot stall the step;
+/// a game reaching it has such a loop (or a chain of removals 256 deep).
+pub const MAX_POST_STEP_ROUNDS: u32 = 256;
 
 /// A post-step callback: runs once after the step with the world and its key.
 pub type PostStepFn = for<'w> fn(&mut World<'w>, u64);
@@ -196,13 +217,113 @@ impl<'a> HandlerTable<'a> {
     }
 }
 
-/// The queue of post-step callbacks, one per key.
-pub(crate) type PostStepQueue = heapless::Vec<(PostStepFn, u64), MAX_POST_STEP_CALLBACKS>;
+/// A queued post-step callback: the function and its key.
+pub(crate) type PostStepEntry = (PostStepFn, u64);
+
+fn idle(_: &mut World<'_>, _: u64) {}
+
+/// An unused queue slot (for static buffers).
+pub(crate) const EMPTY_POST_STEP: PostStepEntry = (idle, 0);
+
+/// Where the queue stands: pending entries are `slots[head..len]`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct QueueState {
+    head: usize,
+    len: usize,
+    /// Most entries pending at once (diagnostics, for `stats()`).
+    pub(crate) peak: usize,
+    /// Callbacks refused because the queue was full since the counter was
+    /// last taken (diagnostics, for the step report).
+    pub(crate) refused: u32,
+}
+
+/// The queue of post-step callbacks, one per key, in registration order (a
+/// FIFO over a fixed slice whose length is the capacity,
+/// [`Capacities::post_step_callbacks`](crate::Capacities::post_step_callbacks)).
+///
+/// It is empty whenever the game can snapshot: the step drains it before it
+/// returns, and so does a `remove_body` called between steps (see
+/// [`CallbackContext::add_post_step_callback`]). So it is not state, and is in
+/// neither the snapshot nor the hash.
+pub(crate) struct PostStepQueue<'a> {
+    slots: ManagedSlice<'a, PostStepEntry>,
+    pub(crate) state: QueueState,
+}
+
+impl<'a> PostStepQueue<'a> {
+    pub(crate) fn new(slots: ManagedSlice<'a, PostStepEntry>) -> Self {
+        Self { slots, state: QueueState::default() }
+    }
+
+    /// The queue as callbacks see it.
+    pub(crate) fn view(&mut self) -> QueueView<'_> {
+        QueueView { slots: &mut self.slots, state: &mut self.state }
+    }
+
+    /// Callbacks waiting to run.
+    pub(crate) fn pending(&self) -> usize {
+        self.state.len.saturating_sub(self.state.head)
+    }
+
+    /// The oldest pending callback, taken off the queue.
+    pub(crate) fn pop(&mut self) -> Option<PostStepEntry> {
+        let QueueState { head, len, .. } = &mut self.state;
+        if *head >= *len {
+            return None;
+        }
+        let entry = self.slots.get(*head).copied();
+        *head = head.saturating_add(1);
+        if *head >= *len {
+            (*head, *len) = (0, 0);
+        }
+        entry
+    }
+
+    /// Drops every pending callback; returns how many there were.
+    pub(crate) fn clear(&mut self) -> usize {
+        let dropped = self.pending();
+        (self.state.head, self.state.len) = (0, 0);
+        dropped
+    }
+}
+
+/// A borrowed view of the post-step queue, for [`CallbackContext`].
+pub(crate) struct QueueView<'q> {
+    slots: &'q mut [PostStepEntry],
+    state: &'q mut QueueState,
+}
+
+impl QueueView<'_> {
+    /// Queues `f(world, key)` unless a pending callback has this key: `Ok(true)`
+    /// when queued, `Ok(false)` when already pending.
+    fn push(&mut self, f: PostStepFn, key: u64) -> Result<bool, Error> {
+        let QueueState { head, len, peak, refused } = &mut *self.state;
+        let pending = self.slots.get(*head..*len).unwrap_or(&[]);
+        if pending.iter().any(|(_, k)| *k == key) {
+            return Ok(false);
+        }
+        if *len >= self.slots.len() && *head > 0 {
+            // Full at the end but run entries at the front: move the pending
+            // ones down.
+            self.slots.copy_within(*head..*len, 0);
+            *len = len.saturating_sub(*head);
+            *head = 0;
+        }
+        let Some(slot) = self.slots.get_mut(*len) else {
+            *refused = refused.saturating_add(1);
+            return Err(Error::CapacityFull { what: "post-step callback" });
+        };
+        *slot = (f, key);
+        *len = len.saturating_add(1);
+        *peak = (*peak).max(len.saturating_sub(*head));
+        Ok(true)
+    }
+}
 
 /// What a collision callback may look at and do during a step.
 pub struct CallbackContext<'c> {
     pub(crate) bodies: &'c Arena<'c, Body>,
-    pub(crate) post_step: &'c mut PostStepQueue,
+    pub(crate) post_step: QueueView<'c>,
 }
 
 impl CallbackContext<'_> {
@@ -214,18 +335,33 @@ impl CallbackContext<'_> {
 
     /// Schedules `f(world, key)` to run once after this step (the manual's
     /// `addPostStepCallback`): the safe place to remove bodies. Returns
-    /// `Ok(false)` when a callback with this key is already scheduled (it still
+    /// `Ok(false)` when a callback with this key is already pending (it still
     /// runs once).
     ///
+    /// # When it runs
+    /// Queued during a step (from `begin`, `pre_solve`, `post_solve` or `end`),
+    /// it runs after the step's stages and the joint-break callbacks, in
+    /// registration order. Callbacks queued while those run (directly, or by an
+    /// `end` handler that a `remove_body` inside them triggers) run in the same
+    /// step, after the ones already queued, round after round until the queue is
+    /// empty, for at most [`MAX_POST_STEP_ROUNDS`] rounds; whatever is still
+    /// queued then is dropped and counted in
+    /// [`StepReport::post_step_dropped`](crate::StepReport::post_step_dropped).
+    /// Queued outside a step (an `end` handler run by a game's
+    /// [`World::remove_body`]), it runs, drained the same way, before that
+    /// `remove_body` returns.
+    ///
+    /// So the queue is always empty when `step` or `remove_body` returns: it is
+    /// never state between steps, and a snapshot taken there misses nothing.
+    ///
     /// # Errors
-    /// [`Error::CapacityFull`] when [`MAX_POST_STEP_CALLBACKS`] are queued.
+    /// [`Error::CapacityFull`] when the queue
+    /// ([`Capacities::post_step_callbacks`](crate::Capacities::post_step_callbacks),
+    /// or `WorldBuffers`' `CALLBACKS`) is full; the refusal is also counted in
+    /// [`StepReport::post_step_refused`](crate::StepReport::post_step_refused).
+    /// `begin` runs once per contact, so a game that removes bodies from `begin`
+    /// should size the queue for every body that can land in one step.
     pub fn add_post_step_callback(&mut self, f: PostStepFn, key: u64) -> Result<bool, Error> {
-        if self.post_step.iter().any(|(_, k)| *k == key) {
-            return Ok(false);
-        }
-        self.post_step
-            .push((f, key))
-            .map(|()| true)
-            .map_err(|_| Error::CapacityFull { what: "post-step callback" })
+        self.post_step.push(f, key)
     }
 }

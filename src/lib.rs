@@ -198,7 +198,7 @@ pub use managed::ManagedSlice;
 pub use math::{Matrix22, Rect, Rot, Scalar, Transform, Vector2};
 pub use query::{QueryFilter, QueryShape, RayHit};
 pub use world::{
-    Capacities, GeneratorHandle, JointBreakFn, StepReport, Storage, World, WorldBuffers, WorldDef,
+    Capacities, GeneratorHandle, JointBreakFn, StepReport, Storage, World, WorldBuffers, WorldDef, WorldStats,
 };
 
 /// The README's examples, compiled and run as doctests so they cannot rot.

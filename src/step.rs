@@ -7,15 +7,17 @@
 //! world itself.
 //!
 //! 1. **broad phase** ([`collision::broad_phase`]): proxies and candidate pairs.
-//!    Every capacity the step needs is checked here, before anything changes, so
-//!    a step either fails with an error and leaves the world as it was, or
-//!    completes.
+//!    A full pair buffer keeps the lowest pair keys and counts the rest as
+//!    dropped; with [`WorldDef::strict_capacity`] every capacity the step needs
+//!    is checked here instead, before anything changes, so a strict step either
+//!    fails with an error and leaves the world as it was, or completes.
 //! 2. **forces** ([`force::apply`]): each force generator, in the order added, over
 //!    the dynamic bodies it accepts (slot order). The velocity change is spread
 //!    over the sub-steps by the solver.
 //! 3. **narrow phase and arbiter lifecycle** ([`collision::update_arbiters`]):
 //!    manifolds, states, and the `begin`, `pre_solve` and `end` callbacks in
-//!    canonical pair order.
+//!    canonical pair order. A full arbiter store keeps the lowest keys and
+//!    skips (and counts) the rest.
 //! 4. **solve and integrate** ([`solver::solve`]): the sub-stepped soft contact
 //!    and joint solver, which also advances positions, then the restitution pass.
 //! 5. **limits** ([`limits::enforce`]): speeds clamped to the world's maxima;
@@ -28,7 +30,9 @@
 //! joints that broke, in joint-slot order, handing each to the break callback,
 //! then runs the post-step callbacks, once per key, in registration order, with
 //! `&mut World`: the safe place to remove bodies. Callbacks registered while
-//! these run (or outside a step) run after the next step.
+//! these run run in the same step, round after round until the queue is empty
+//! (at most [`MAX_POST_STEP_ROUNDS`](crate::handler::MAX_POST_STEP_ROUNDS)
+//! rounds), so the queue is empty whenever `step` returns.
 //!
 //! Every loop runs in body-slot or pair-key order, functions of the simulation
 //! history alone.
@@ -49,17 +53,40 @@ use crate::solver::{self, Softness, Solver};
 use crate::world::def::WorldDef;
 
 /// What happened during a step.
+///
+/// The `*_dropped` and `*_refused` counts are how a game learns that a store
+/// was full: the step completed without what they count (see
+/// [`World::step`](crate::World::step) for the policy, and
+/// [`World::stats`](crate::World::stats) for the high-water marks to size the
+/// capacities by). They are zero whenever every store was large enough.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct StepReport {
     /// Bodies that left the bounds this step (now frozen; see
     /// [`World::out_of_bounds_bodies`](crate::World::out_of_bounds_bodies)).
     pub left_bounds: u32,
+    /// Candidate pairs the broad phase kept this step.
+    pub candidate_pairs: u32,
     /// Arbiters alive after the step (touching pairs and persisted ones).
     pub arbiters: u32,
-    /// Post-step callbacks that ran after the step.
+    /// Post-step callbacks that ran after the step (all rounds).
     pub post_step_callbacks: u32,
     /// Breakable joints that broke this step (and were removed).
     pub joints_broken: u32,
+    /// Candidate pairs left out because the pair buffer
+    /// ([`Capacities::contacts`](crate::Capacities::contacts)) was full: the
+    /// pairs with the highest keys (lower body slot, then higher).
+    pub pairs_dropped: u32,
+    /// Pairs skipped because the arbiter store was full: candidate pairs not
+    /// collided and arbiters dropped (ended, with `end` if they had begun), the
+    /// highest keys first.
+    pub arbiters_dropped: u32,
+    /// Post-step callbacks refused during this step because the queue was full
+    /// (each was also an `Err` to the callback that asked).
+    pub post_step_refused: u32,
+    /// Post-step callbacks still queued after
+    /// [`MAX_POST_STEP_ROUNDS`](crate::handler::MAX_POST_STEP_ROUNDS) rounds,
+    /// dropped without running.
+    pub post_step_dropped: u32,
 }
 
 /// Everything a step derives from the world's configuration and `dt`, computed
@@ -96,6 +123,8 @@ pub(crate) struct StepContext {
     pub(crate) restitution_threshold: Scalar,
     /// Steps an arbiter outlives the contact.
     pub(crate) arbiter_persistence: u32,
+    /// A full pair or arbiter store fails the step instead of dropping pairs.
+    pub(crate) strict_capacity: bool,
 }
 
 impl StepContext {
@@ -131,6 +160,7 @@ impl StepContext {
             push_speed: def.contact_push_speed,
             restitution_threshold: def.restitution_threshold,
             arbiter_persistence: def.arbiter_persistence,
+            strict_capacity: def.strict_capacity,
         })
     }
 }
@@ -144,7 +174,7 @@ pub(crate) struct StepParts<'w, 'a> {
     pub(crate) broad_phase: &'w mut BroadPhase<'a>,
     pub(crate) arbiters: &'w mut ArbiterStore<'a>,
     pub(crate) handlers: &'w mut HandlerTable<'a>,
-    pub(crate) post_step: &'w mut PostStepQueue,
+    pub(crate) post_step: &'w mut PostStepQueue<'a>,
     pub(crate) joints: &'w mut Arena<'a, Joint, JointMarker>,
     pub(crate) constraints: &'w mut UserConstraints<'a>,
     pub(crate) solver: &'w mut Solver<'a>,
@@ -153,15 +183,24 @@ pub(crate) struct StepParts<'w, 'a> {
 /// Runs the stages of one step. On error nothing has changed.
 ///
 /// # Errors
-/// [`Error::CapacityFull`] when the candidate pairs or arbiters do not fit the
-/// contact buffers.
+/// With `strict_capacity`, [`Error::CapacityFull`] when the candidate pairs
+/// or arbiters do not fit the contact buffers.
 pub(crate) fn run(ctx: &StepContext, p: StepParts<'_, '_>) -> Result<StepReport, Error> {
-    let n = collision::broad_phase(ctx, p.bodies, p.joints, p.broad_phase, p.arbiters)?;
+    let found = collision::broad_phase(ctx, p.bodies, p.joints, p.broad_phase, p.arbiters)?;
     force::apply(ctx, p.bodies, p.generators);
-    let candidates = p.broad_phase.candidates(n);
-    collision::update_arbiters(ctx, candidates, p.bodies, p.paths, p.arbiters, p.handlers, p.post_step);
+    let candidates = p.broad_phase.candidates(found.count);
+    let skipped =
+        collision::update_arbiters(ctx, candidates, p.bodies, p.paths, p.arbiters, p.handlers, p.post_step);
     solver::solve(ctx, p.bodies, p.arbiters, p.joints, p.constraints, p.solver);
     let left_bounds = limits::enforce(ctx, p.bodies, p.paths);
     collision::post_solve(p.bodies, p.arbiters, p.handlers, p.post_step);
-    Ok(StepReport { left_bounds, arbiters: p.arbiters.len() as u32, ..StepReport::default() })
+    let count = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+    Ok(StepReport {
+        left_bounds,
+        candidate_pairs: count(found.count),
+        arbiters: count(p.arbiters.len()),
+        pairs_dropped: count(found.dropped),
+        arbiters_dropped: count(skipped),
+        ..StepReport::default()
+    })
 }

@@ -3,7 +3,7 @@
 
 use std::sync::{Arc, Mutex};
 
-use arphysics::handler::{MAX_COLLISION_HANDLERS, MAX_POST_STEP_CALLBACKS};
+use arphysics::handler::{DEFAULT_POST_STEP_CALLBACKS, MAX_COLLISION_HANDLERS};
 use arphysics::{
     Arbiter, ArbiterState, BodyDef, BodyHandle, CallbackContext, CollisionHandler, Error, FnHandler,
     GravityForceGenerator, Handler, Index, PairSink, PolygonPath, Proxy, Rect, Scalar, SpatialIndex, Vector2,
@@ -275,11 +275,11 @@ fn a_custom_index_gives_the_same_world_as_brute_force_even_when_sloppy() {
 }
 
 #[test]
-fn a_full_pair_buffer_is_an_error_and_changes_nothing() {
+fn in_strict_mode_a_full_pair_buffer_is_an_error_and_changes_nothing() {
     let bounds = Rect::from_corners(v(-100.0, -100.0), v(100.0, 100.0));
     let mut w = World::with_capacities(
-        WorldDef::with_bounds(bounds),
-        arphysics::Capacities { bodies: 16, paths: 4, contacts: 2, joints: 0 },
+        WorldDef { strict_capacity: true, ..WorldDef::with_bounds(bounds) },
+        arphysics::Capacities { bodies: 16, paths: 4, contacts: 2, joints: 0, post_step_callbacks: 4 },
     )
     .expect("world");
     for i in 0..4 {
@@ -316,7 +316,7 @@ fn count_post_step(w: &mut World<'_>, key: u64) {
 
 fn schedule_many(_: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
     let mut full = None;
-    for key in 0..(MAX_POST_STEP_CALLBACKS as u64 + 5) {
+    for key in 0..(DEFAULT_POST_STEP_CALLBACKS as u64 + 5) {
         if let Err(e) = ctx.add_post_step_callback(count_post_step, 1_000_000 + key) {
             full = Some(e);
         }
@@ -334,7 +334,8 @@ fn the_post_step_queue_is_bounded_and_runs_each_key_once() {
         .expect("h");
     w.add_body(BodyDef::circle(s(0.5)).position(v(0.0, 0.5)).collision_level(1)).expect("ball");
     let report = w.step(s(DT)).expect("step");
-    assert_eq!(report.post_step_callbacks, MAX_POST_STEP_CALLBACKS as u32);
+    assert_eq!(report.post_step_callbacks, DEFAULT_POST_STEP_CALLBACKS as u32);
+    assert_eq!(report.post_step_refused, 5, "the refusals are in the report");
     assert_eq!(w.step(s(DT)).expect("step").post_step_callbacks, 0, "the queue is emptied");
 }
 

@@ -54,7 +54,7 @@ fn world_with_contacts(bodies: usize, contacts: usize, gravity: bool) -> World<'
     let bounds = Rect::from_corners(v(-1000.0, -1000.0), v(1000.0, 1000.0));
     let mut w = World::with_capacities(
         WorldDef::with_bounds(bounds),
-        Capacities { bodies, paths: 8, contacts, joints: 0 },
+        Capacities { bodies, paths: 8, contacts, joints: 0, post_step_callbacks: 64 },
     )
     .expect("world");
     if gravity {

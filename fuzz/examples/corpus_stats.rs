@@ -15,7 +15,7 @@ fn main() {
             let bytes = std::fs::read(entry.expect("entry").path()).expect("read");
             files += 1;
             let Ok(input) = Input::arbitrary_take_rest(Unstructured::new(&bytes)) else { continue };
-            let Ok(mut r) = Runner::new(&input.world, Storage::with_capacities(input.world.capacities()))
+            let Ok(mut r) = Runner::new(&input.world, Storage::with_capacities(input.world.capacities()).expect("small capacities fit the heap"))
             else {
                 continue;
             };

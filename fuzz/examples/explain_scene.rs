@@ -14,7 +14,7 @@ fn main() {
     // The storage `scene_ops` uses: heap for an even `paths`, static buffers for odd.
     let mut buffers = Box::new(WorldBuffers::<12, 48, 8>::new());
     let storage = if input.world.paths.is_multiple_of(2) {
-        Storage::with_capacities(input.world.capacities())
+        Storage::with_capacities(input.world.capacities()).expect("small capacities fit the heap")
     } else {
         buffers.storage()
     };

@@ -276,6 +276,7 @@ impl WorldSpec {
             paths: usize::from(self.paths % 17),
             contacts: usize::from(self.contacts % 129),
             joints: usize::from(self.joints % 33),
+            post_step_callbacks: arphysics::handler::DEFAULT_POST_STEP_CALLBACKS,
         }
     }
 }

@@ -15,8 +15,9 @@
 //! is harmless, and so is reporting a proxy with itself or an index out of range:
 //! the engine drops self-pairs and out-of-range indices, sorts the pairs into the
 //! canonical order and removes duplicates, so the order of reports cannot change
-//! the simulation. An index should still report in a deterministic order, so that
-//! which pairs fit when the pair buffer is full does not vary.
+//! the simulation. Duplicates do not use capacity, and when more distinct pairs
+//! are reported than the buffer holds, the lowest keys are kept, whatever the
+//! order of the reports (see [`PairSink`]).
 //!
 //! [`BruteForceIndex`] tests all pairs (the manual's default, fine below ~100
 //! moving bodies); [`SortAndSweepIndex`] scales to thousands. A world's default,
@@ -46,47 +47,122 @@ pub struct Proxy {
 }
 
 /// Where an index reports candidate pairs: indices into the proxy slice.
+///
+/// # Only what is needed uses capacity
+/// The sink drops self-pairs, out-of-range indices and pairs the engine would
+/// discard anyway (two bodies that may not collide: both without mass, a shared
+/// collision group, a joint that keeps them apart) as they are reported. When
+/// its buffer fills it sorts it and removes duplicates; if it is still full,
+/// it keeps the pairs with the lowest keys (lower proxy index, then higher),
+/// so which pairs are kept does not depend on the order of the reports. The
+/// pairs it had to leave out are counted in
+/// [`StepReport::pairs_dropped`](crate::StepReport::pairs_dropped), and the step
+/// goes on without them (or, with
+/// [`WorldDef::strict_capacity`](crate::WorldDef::strict_capacity), fails).
 pub struct PairSink<'s> {
     pub(crate) pairs: &'s mut [(u32, u32)],
     pub(crate) len: usize,
+    /// The buffer is full, sorted and without duplicates: new pairs are
+    /// inserted in order, evicting the highest key.
+    pub(crate) sorted_full: bool,
+    /// Pairs left out because the buffer was full (an evicted pair that is
+    /// reported again counts again).
+    pub(crate) dropped: usize,
+    /// Stop at the first pair that does not fit (strict capacity).
+    pub(crate) strict: bool,
+    /// A pair did not fit in strict mode.
     pub(crate) overflowed: bool,
+    /// Whether the engine wants the pair of proxies `(a, b)`, `a < b`.
+    pub(crate) accept: &'s dyn Fn(u32, u32) -> bool,
+}
+
+impl<'s> PairSink<'s> {
+    /// A sink writing into `pairs`, keeping the pairs `accept` wants.
+    pub(crate) fn new(
+        pairs: &'s mut [(u32, u32)],
+        strict: bool,
+        accept: &'s dyn Fn(u32, u32) -> bool,
+    ) -> Self {
+        Self { pairs, len: 0, sorted_full: false, dropped: 0, strict, overflowed: false, accept }
+    }
 }
 
 impl PairSink<'_> {
     /// Reports that proxies `a` and `b` (indices into the slice given to
-    /// [`SpatialIndex::find_pairs`]) may overlap. Returns `false` once the pair
-    /// buffer is full (the step will then fail with
-    /// [`Error::CapacityFull`](crate::Error::CapacityFull) and change nothing), so
-    /// the index can stop early.
+    /// [`SpatialIndex::find_pairs`]) may overlap, in either order. Returns
+    /// `false` only when the step will fail anyway (a strict world whose pair
+    /// buffer is full), so the index can stop early; otherwise keep reporting,
+    /// so the engine can keep the lowest keys.
     pub fn push(&mut self, a: u32, b: u32) -> bool {
-        if a == b {
-            return true;
+        if a == b || self.overflowed {
+            return !self.overflowed;
         }
         let pair = if a < b { (a, b) } else { (b, a) };
-        match self.pairs.get_mut(self.len) {
-            Some(slot) => {
+        if !(self.accept)(pair.0, pair.1) {
+            return true;
+        }
+        if !self.sorted_full && self.len >= self.pairs.len() {
+            self.compact();
+        }
+        if !self.sorted_full {
+            if let Some(slot) = self.pairs.get_mut(self.len) {
                 *slot = pair;
                 self.len = self.len.saturating_add(1);
-                true
             }
-            None => {
-                self.overflowed = true;
-                false
+            return true;
+        }
+        let kept = self.pairs.get_mut(..self.len).unwrap_or(&mut []);
+        let Err(at) = kept.binary_search(&pair) else { return true }; // a duplicate
+        if self.strict {
+            self.overflowed = true;
+            return false;
+        }
+        self.dropped = self.dropped.saturating_add(1);
+        if at < kept.len() {
+            // Lower than the highest kept key: it takes its place.
+            kept.copy_within(at..kept.len().saturating_sub(1), at.saturating_add(1));
+            if let Some(slot) = kept.get_mut(at) {
+                *slot = pair;
             }
         }
+        true
     }
 
-    /// Pairs reported so far.
+    /// Sorts the buffer and removes duplicates; still full, it switches to
+    /// ordered insertion.
+    fn compact(&mut self) {
+        let kept = self.pairs.get_mut(..self.len).unwrap_or(&mut []);
+        kept.sort_unstable();
+        self.len = dedup_sorted(kept);
+        self.sorted_full = self.len >= self.pairs.len();
+    }
+
+    /// Pairs kept so far (after the duplicates removed when the buffer filled).
     #[must_use]
     pub fn len(&self) -> usize {
         self.len
     }
 
-    /// True when nothing was reported yet.
+    /// True when nothing was kept yet.
     #[must_use]
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }
+}
+
+/// Removes adjacent duplicates of a sorted slice in place; returns the new length.
+pub(crate) fn dedup_sorted(v: &mut [(u32, u32)]) -> usize {
+    let mut n = 0usize;
+    for k in 0..v.len() {
+        let Some(&x) = v.get(k) else { break };
+        if n == 0 || v.get(n.wrapping_sub(1)) != Some(&x) {
+            if let Some(slot) = v.get_mut(n) {
+                *slot = x;
+            }
+            n = n.saturating_add(1);
+        }
+    }
+    n
 }
 
 /// A broad phase. Implement it to bring your own (grid, tree, sweep…); see the

@@ -80,6 +80,8 @@ fn read_def(c: &mut Cursor<'_>) -> Result<WorldDef, Error> {
         contact_push_speed,
         restitution_threshold,
         arbiter_persistence,
+        // Not in this format version's encoding; `validate` takes the world's.
+        strict_capacity: false,
     })
 }
 

@@ -133,6 +133,11 @@ impl World<'_> {
     /// for each pair that had begun (the body is still readable then), in pair
     /// order, and the arbiters are dropped. Safe to call from a post-step callback.
     ///
+    /// Post-step callbacks that those `end` handlers queue run before this call
+    /// returns (after the body is gone), drained as the step drains them; called
+    /// from a post-step callback or a joint-break callback, it leaves them to the
+    /// step's drain instead. Either way nothing stays queued between steps.
+    ///
     /// # Errors
     /// [`Error::StaleHandle`].
     pub fn remove_body(&mut self, h: BodyHandle) -> Result<Body, Error> {
@@ -142,7 +147,9 @@ impl World<'_> {
         let World { bodies, arbiters, handlers, post_step, .. } = self;
         collision::end_arbiters_of(h.index(), bodies, arbiters, handlers, post_step);
         self.remove_constraints_of(h);
-        self.bodies.remove(h).ok_or(Error::StaleHandle)
+        let body = self.bodies.remove(h).ok_or(Error::StaleHandle);
+        self.drain_post_step_outside_step();
+        body
     }
 
     /// Removes every joint and game constraint attached to `h`.

@@ -34,6 +34,13 @@ pub struct WorldDef {
     /// Steps an arbiter is kept after its bodies stop touching, counting the step
     /// they separate (default 3; the manual's persistence).
     pub arbiter_persistence: u32,
+    /// What a step does when the candidate pairs or the arbiters do not fit the
+    /// contact buffers ([`Capacities::contacts`](crate::Capacities::contacts)).
+    /// `false` (the default): it completes, keeping the lowest pair keys, and
+    /// counts what it left out in the
+    /// [`StepReport`](crate::StepReport) (`pairs_dropped`, `arbiters_dropped`).
+    /// `true`: it fails with [`Error::CapacityFull`] and changes nothing.
+    pub strict_capacity: bool,
 }
 
 impl WorldDef {
@@ -56,6 +63,7 @@ impl WorldDef {
             contact_push_speed: Scalar::from_int(3),
             restitution_threshold: Scalar::from_int(1),
             arbiter_persistence: 3,
+            strict_capacity: false,
         }
     }
 

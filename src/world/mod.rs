@@ -20,9 +20,11 @@
 mod bodies;
 pub mod def;
 mod joints;
+mod stats;
 pub mod storage;
 
 pub use def::WorldDef;
+pub use stats::WorldStats;
 pub use storage::{Capacities, Storage, WorldBuffers};
 
 pub use crate::force::{GeneratorHandle, GeneratorMarker, MAX_FORCE_GENERATORS};
@@ -39,7 +41,7 @@ use crate::constraint::{Joint, JointHandle, JointMarker, UserConstraints};
 use crate::error::Error;
 use crate::force::{Generator, Generators};
 use crate::geometry::PolygonPath;
-use crate::handler::{Handler, HandlerTable, PostStepQueue};
+use crate::handler::{Handler, HandlerTable, PostStepQueue, MAX_POST_STEP_ROUNDS};
 use crate::index::SortAndSweepIndex;
 use crate::math::{Rect, Scalar};
 use crate::solver::Solver;
@@ -61,7 +63,13 @@ pub struct World<'a> {
     pub(crate) broad_phase: BroadPhase<'a>,
     pub(crate) arbiters: ArbiterStore<'a>,
     pub(crate) handlers: HandlerTable<'a>,
-    pub(crate) post_step: PostStepQueue,
+    pub(crate) post_step: PostStepQueue<'a>,
+    /// True while the step runs its hooks (joint breaks, post-step callbacks):
+    /// a `remove_body` then leaves what its `end` handlers queue to the step's
+    /// drain instead of draining itself.
+    pub(crate) in_step_hooks: bool,
+    /// Diagnostics (not state).
+    pub(crate) stats: WorldStats,
     pub(crate) joints: Arena<'a, Joint, JointMarker>,
     pub(crate) solver: Solver<'a>,
     pub(crate) constraints: UserConstraints<'a>,
@@ -78,6 +86,13 @@ impl<'a> World<'a> {
     pub fn new(def: WorldDef, storage: Storage<'a>) -> Result<Self, Error> {
         def.validate()?;
         let s = storage;
+        let capacities = Capacities {
+            bodies: s.bodies.len(),
+            paths: s.paths.len(),
+            contacts: s.arbiters.len().min(s.arbiters_next.len()).min(s.pairs.len()),
+            joints: s.joints.len(),
+            post_step_callbacks: s.post_step.len(),
+        };
         Ok(Self {
             def,
             bodies: Arena::new(s.bodies),
@@ -93,7 +108,9 @@ impl<'a> World<'a> {
             },
             arbiters: ArbiterStore::new(s.arbiters, s.arbiters_next),
             handlers: HandlerTable::new(),
-            post_step: PostStepQueue::new(),
+            post_step: PostStepQueue::new(s.post_step),
+            in_step_hooks: false,
+            stats: WorldStats { capacities, ..WorldStats::default() },
             joints: Arena::new(s.joints),
             solver: Solver { bodies: s.solver_bodies, constraints: s.contact_constraints, count: 0 },
             constraints: Arena::inline(),
@@ -105,10 +122,23 @@ impl<'a> World<'a> {
     /// A world on heap storage with the given capacities.
     ///
     /// # Errors
-    /// As [`World::new`].
+    /// As [`World::new`], and as [`Storage::with_capacities`] for capacities the
+    /// heap cannot hold ([`Error::OutOfRange`], [`Error::OutOfMemory`]).
     #[cfg(feature = "alloc")]
     pub fn with_capacities(def: WorldDef, capacities: Capacities) -> Result<Self, Error> {
-        Self::new(def, Storage::with_capacities(capacities))
+        Self::new(def, Storage::with_capacities(capacities)?)
+    }
+
+    /// The world's capacities, high-water marks and drop counts since it was
+    /// created: what a game needs to size its stores. Diagnostics, not state:
+    /// in neither the snapshot nor the hash, and unchanged by `restore`.
+    #[must_use]
+    pub fn stats(&self) -> WorldStats {
+        let mut s = self.stats;
+        s.peak_bodies = s.peak_bodies.max(self.bodies.slots_used() as usize);
+        s.peak_joints = s.peak_joints.max(self.joints.slots_used() as usize);
+        s.peak_post_step_callbacks = s.peak_post_step_callbacks.max(self.post_step.state.peak);
+        s
     }
 
     /// The configuration.
@@ -134,12 +164,25 @@ impl<'a> World<'a> {
     /// Advances the simulation by `dt` seconds: the stages of the step pipeline (`step.rs`),
     /// then the broken joints' callback and the post-step callbacks.
     ///
+    /// # A full store never stops the game
+    /// When the candidate pairs or the arbiters do not fit the contact buffers,
+    /// the step completes: the lowest pair keys (lower body slot, then higher)
+    /// are kept, the rest skipped and counted in the report (`pairs_dropped`,
+    /// `arbiters_dropped`), and a skipped arbiter that had begun gets its `end`.
+    /// With [`WorldDef::strict_capacity`] it is an error instead. The
+    /// post-step queue is run to exhaustion (see
+    /// [`CallbackContext::add_post_step_callback`](crate::CallbackContext::add_post_step_callback)),
+    /// so it is empty when `step` returns. [`World::stats`] has the
+    /// high-water marks to size the capacities by.
+    ///
     /// # Errors
-    /// [`Error::InvalidTimeStep`] when `dt ≤ 0` or `dt > MAX_TIME_STEP`;
-    /// [`Error::CapacityFull`] when the candidate pairs or arbiters do not fit the
-    /// contact buffers. On error the world is unchanged.
+    /// [`Error::InvalidTimeStep`] when `dt ≤ 0` or `dt > MAX_TIME_STEP`; with
+    /// [`WorldDef::strict_capacity`], [`Error::CapacityFull`] when the candidate
+    /// pairs or arbiters do not fit the contact buffers. On error the world is
+    /// unchanged.
     pub fn step(&mut self, dt: Scalar) -> Result<StepReport, Error> {
         let ctx = StepContext::new(&self.def, dt)?;
+        self.post_step.state.refused = 0;
         let parts = StepParts {
             bodies: &mut self.bodies,
             paths: &self.paths,
@@ -154,9 +197,28 @@ impl<'a> World<'a> {
         };
         let mut report = step::run(&ctx, parts)?;
         self.step_count = self.step_count.wrapping_add(1);
+        let outer = core::mem::replace(&mut self.in_step_hooks, true);
         report.joints_broken = self.remove_broken_joints();
-        report.post_step_callbacks = self.run_post_step_callbacks();
+        let (ran, dropped) = self.drain_post_step();
+        self.in_step_hooks = outer;
+        report.post_step_callbacks = ran;
+        report.post_step_dropped = dropped;
+        report.post_step_refused = core::mem::take(&mut self.post_step.state.refused);
+        self.record(&report);
         Ok(report)
+    }
+
+    /// Adds a step's report to the stats.
+    fn record(&mut self, r: &StepReport) {
+        let s = &mut self.stats;
+        let wanted = u64::from(r.candidate_pairs).saturating_add(u64::from(r.pairs_dropped));
+        s.peak_pairs = s.peak_pairs.max(usize::try_from(wanted).unwrap_or(usize::MAX));
+        s.peak_arbiters = s.peak_arbiters.max(self.arbiters.len());
+        s.peak_contact_constraints = s.peak_contact_constraints.max(self.solver.count);
+        s.pairs_dropped = s.pairs_dropped.saturating_add(u64::from(r.pairs_dropped));
+        s.arbiters_dropped = s.arbiters_dropped.saturating_add(u64::from(r.arbiters_dropped));
+        s.post_step_refused = s.post_step_refused.saturating_add(u64::from(r.post_step_refused));
+        s.post_step_dropped = s.post_step_dropped.saturating_add(u64::from(r.post_step_dropped));
     }
 
     /// Removes the joints that broke this step, in slot order, handing each to
@@ -178,16 +240,39 @@ impl<'a> World<'a> {
         broken
     }
 
-    /// Runs the queued post-step callbacks, in registration order. Returns how
-    /// many ran.
-    fn run_post_step_callbacks(&mut self) -> u32 {
-        let queue = core::mem::take(&mut self.post_step);
+    /// Runs the queued post-step callbacks to exhaustion: those queued when it
+    /// starts, in registration order, then those they queued, round after round,
+    /// for at most [`MAX_POST_STEP_ROUNDS`] rounds. Returns how many ran and how
+    /// many were still queued after the last round (dropped).
+    fn drain_post_step(&mut self) -> (u32, u32) {
         let mut ran = 0u32;
-        for (f, key) in queue {
-            f(self, key);
-            ran = ran.saturating_add(1);
+        let mut rounds = 0u32;
+        while self.post_step.pending() > 0 && rounds < MAX_POST_STEP_ROUNDS {
+            rounds = rounds.saturating_add(1);
+            for _ in 0..self.post_step.pending() {
+                let Some((f, key)) = self.post_step.pop() else { break };
+                f(self, key);
+                ran = ran.saturating_add(1);
+            }
         }
-        ran
+        let dropped = u32::try_from(self.post_step.clear()).unwrap_or(u32::MAX);
+        (ran, dropped)
+    }
+
+    /// After a call outside a step that may have queued post-step callbacks
+    /// (a game's `remove_body`): runs them now, so the queue is empty when the
+    /// call returns. Inside the step's hooks, leaves them to the step's drain.
+    pub(crate) fn drain_post_step_outside_step(&mut self) {
+        if self.in_step_hooks || self.post_step.pending() == 0 {
+            return;
+        }
+        self.in_step_hooks = true;
+        let (_, dropped) = self.drain_post_step();
+        self.in_step_hooks = false;
+        let s = &mut self.stats;
+        s.post_step_dropped = s.post_step_dropped.saturating_add(u64::from(dropped));
+        let refused = core::mem::take(&mut self.post_step.state.refused);
+        s.post_step_refused = s.post_step_refused.saturating_add(u64::from(refused));
     }
 
     // ---- force generators ----------------------------------------------------

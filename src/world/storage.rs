@@ -11,7 +11,10 @@ use crate::arbiter::Arbiter;
 use crate::arena::Slot;
 use crate::body::Body;
 use crate::constraint::Joint;
+#[cfg(feature = "alloc")]
+use crate::error::Error;
 use crate::geometry::PolygonPath;
+use crate::handler::{PostStepEntry, DEFAULT_POST_STEP_CALLBACKS, EMPTY_POST_STEP};
 use crate::index::Proxy;
 use crate::math::{Rect, Vector2};
 use crate::solver::{ContactConstraint, SolverBody};
@@ -28,6 +31,11 @@ pub struct Capacities {
     pub contacts: usize,
     /// Built-in joints.
     pub joints: usize,
+    /// Post-step callbacks that can be queued at once (see
+    /// [`CallbackContext::add_post_step_callback`](crate::CallbackContext::add_post_step_callback)).
+    /// A game that removes bodies from `begin` needs one per body that can land
+    /// in one step.
+    pub post_step_callbacks: usize,
 }
 
 impl Default for Capacities {
@@ -40,21 +48,53 @@ impl Capacities {
     /// The bytes of storage these capacities take (the world struct itself, with
     /// its inline hooks, comes on top): [`Storage::BYTES_PER_BODY`] per body,
     /// [`Storage::BYTES_PER_PATH`] per path, [`Storage::BYTES_PER_CONTACT`] per
-    /// contact, [`Storage::BYTES_PER_JOINT`] per joint; saturating.
+    /// contact, [`Storage::BYTES_PER_JOINT`] per joint,
+    /// [`Storage::BYTES_PER_CALLBACK`] per queued callback; saturating.
     #[must_use]
     pub const fn storage_bytes(&self) -> usize {
-        self.bodies
-            .saturating_mul(Storage::BYTES_PER_BODY)
-            .saturating_add(self.paths.saturating_mul(Storage::BYTES_PER_PATH))
-            .saturating_add(self.contacts.saturating_mul(Storage::BYTES_PER_CONTACT))
-            .saturating_add(self.joints.saturating_mul(Storage::BYTES_PER_JOINT))
+        match self.checked_storage_bytes() {
+            Some(n) => n,
+            None => usize::MAX,
+        }
+    }
+
+    /// As [`Capacities::storage_bytes`], or `None` when the sum overflows `usize`.
+    #[must_use]
+    pub const fn checked_storage_bytes(&self) -> Option<usize> {
+        let parts = [
+            self.bodies.checked_mul(Storage::BYTES_PER_BODY),
+            self.paths.checked_mul(Storage::BYTES_PER_PATH),
+            self.contacts.checked_mul(Storage::BYTES_PER_CONTACT),
+            self.joints.checked_mul(Storage::BYTES_PER_JOINT),
+            self.post_step_callbacks.checked_mul(Storage::BYTES_PER_CALLBACK),
+        ];
+        let mut total = 0usize;
+        let mut i = 0;
+        while i < parts.len() {
+            match parts[i] {
+                Some(n) => match total.checked_add(n) {
+                    Some(t) => total = t,
+                    None => return None,
+                },
+                None => return None,
+            }
+            i += 1;
+        }
+        Some(total)
     }
 
     /// Room for `bodies` bodies, each with its own polygon path, 4 contacts and
-    /// 2 joints per body.
+    /// 2 joints per body, and one queued post-step callback per body (at least
+    /// [`DEFAULT_POST_STEP_CALLBACKS`]).
     #[must_use]
     pub fn for_bodies(bodies: usize) -> Self {
-        Self { bodies, paths: bodies, contacts: bodies.saturating_mul(4), joints: bodies.saturating_mul(2) }
+        Self {
+            bodies,
+            paths: bodies,
+            contacts: bodies.saturating_mul(4),
+            joints: bodies.saturating_mul(2),
+            post_step_callbacks: bodies.max(DEFAULT_POST_STEP_CALLBACKS),
+        }
     }
 }
 
@@ -88,6 +128,8 @@ pub struct Storage<'a> {
     pub(crate) solver_bodies: ManagedSlice<'a, SolverBody>,
     /// The solver's contact constraints (scratch); as long as `arbiters`.
     pub(crate) contact_constraints: ManagedSlice<'a, ContactConstraint>,
+    /// The post-step callback queue; its length is the queue's capacity.
+    pub(crate) post_step: ManagedSlice<'a, PostStepEntry>,
 }
 
 impl Storage<'_> {
@@ -106,42 +148,69 @@ impl Storage<'_> {
         2 * size_of::<Arbiter>() + size_of::<(u32, u32)>() + size_of::<ContactConstraint>();
     /// Bytes per joint slot: the joint and its entry in the non-colliding pairs.
     pub const BYTES_PER_JOINT: usize = size_of::<Slot<Joint>>() + size_of::<(u32, u32)>();
+    /// Bytes per post-step queue slot: the function and its key.
+    pub const BYTES_PER_CALLBACK: usize = size_of::<PostStepEntry>();
 
-    /// Heap storage with the given capacities.
+    /// Heap storage with the given capacities. Every buffer is reserved with
+    /// `try_reserve`, so capacities the heap cannot hold are an error, never a
+    /// panic or an abort. (An operating system that overcommits memory may
+    /// still grant a reservation it cannot back; size capacities with
+    /// [`Capacities::storage_bytes`].)
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] (`what: "capacities"`) when the total size overflows
+    /// `usize` or exceeds `isize::MAX` bytes; [`Error::OutOfMemory`] when the heap
+    /// refuses a buffer.
     #[cfg(feature = "alloc")]
-    #[must_use]
-    pub fn with_capacities(c: Capacities) -> Self {
-        fn buf<T>(n: usize) -> alloc::vec::Vec<Slot<T>> {
-            let mut v = alloc::vec::Vec::with_capacity(n);
-            v.resize_with(n, || Slot::EMPTY);
-            v
+    pub fn with_capacities(c: Capacities) -> Result<Self, Error> {
+        fn filled<T>(
+            n: usize,
+            what: &'static str,
+            make: impl FnMut() -> T,
+        ) -> Result<alloc::vec::Vec<T>, Error> {
+            let mut v = alloc::vec::Vec::new();
+            v.try_reserve_exact(n).map_err(|_| Error::OutOfMemory { what })?;
+            v.resize_with(n, make);
+            Ok(v)
         }
-        fn plain<T: Clone>(n: usize, v: T) -> alloc::vec::Vec<T> {
-            alloc::vec![v; n]
+        let fits = c.checked_storage_bytes().is_some_and(|n| isize::try_from(n).is_ok());
+        if !fits {
+            return Err(Error::OutOfRange { what: "capacities" });
         }
         let empty_proxy = Proxy { aabb: Rect::default(), is_static: false };
-        Self {
-            bodies: ManagedSlice::Owned(buf(c.bodies)),
-            paths: ManagedSlice::Owned(buf(c.paths)),
-            proxies: ManagedSlice::Owned(plain(c.bodies, empty_proxy)),
-            proxy_bodies: ManagedSlice::Owned(plain(c.bodies, 0)),
-            pairs: ManagedSlice::Owned(plain(c.contacts, (0, 0))),
-            arbiters: ManagedSlice::Owned(plain(c.contacts, Arbiter::EMPTY)),
-            arbiters_next: ManagedSlice::Owned(plain(c.contacts, Arbiter::EMPTY)),
-            joints: ManagedSlice::Owned(buf(c.joints)),
-            joint_pairs: ManagedSlice::Owned(plain(c.joints, (0, 0))),
-            sweep_order: ManagedSlice::Owned(plain(c.bodies, 0)),
-            solver_bodies: ManagedSlice::Owned(plain(c.bodies, SolverBody::EMPTY)),
-            contact_constraints: ManagedSlice::Owned(plain(c.contacts, ContactConstraint::EMPTY)),
-        }
+        Ok(Self {
+            bodies: ManagedSlice::Owned(filled(c.bodies, "body", || Slot::EMPTY)?),
+            paths: ManagedSlice::Owned(filled(c.paths, "polygon path", || Slot::EMPTY)?),
+            proxies: ManagedSlice::Owned(filled(c.bodies, "broad-phase proxy", || empty_proxy)?),
+            proxy_bodies: ManagedSlice::Owned(filled(c.bodies, "broad-phase proxy", || 0)?),
+            pairs: ManagedSlice::Owned(filled(c.contacts, "contact pair", || (0, 0))?),
+            arbiters: ManagedSlice::Owned(filled(c.contacts, "arbiter", || Arbiter::EMPTY)?),
+            arbiters_next: ManagedSlice::Owned(filled(c.contacts, "arbiter", || Arbiter::EMPTY)?),
+            joints: ManagedSlice::Owned(filled(c.joints, "joint", || Slot::EMPTY)?),
+            joint_pairs: ManagedSlice::Owned(filled(c.joints, "joint", || (0, 0))?),
+            sweep_order: ManagedSlice::Owned(filled(c.bodies, "sweep order", || 0)?),
+            solver_bodies: ManagedSlice::Owned(filled(c.bodies, "solver body", || SolverBody::EMPTY)?),
+            contact_constraints: ManagedSlice::Owned(filled(c.contacts, "contact constraint", || {
+                ContactConstraint::EMPTY
+            })?),
+            post_step: ManagedSlice::Owned(filled(c.post_step_callbacks, "post-step callback", || {
+                EMPTY_POST_STEP
+            })?),
+        })
     }
 }
 
 /// Statically sized buffers for a world that needs no allocator: `BODIES` bodies
 /// and as many polygon paths, `CONTACTS` candidate pairs and arbiters, `JOINTS`
-/// built-in joints (default 16). `new` is `const`, so the buffers can be a
-/// `static` (e.g. in a `static_cell::StaticCell`) or a local.
-pub struct WorldBuffers<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize = 16> {
+/// built-in joints (default 16), `CALLBACKS` queued post-step callbacks
+/// (default [`DEFAULT_POST_STEP_CALLBACKS`], 64). `new` is `const`, so the
+/// buffers can be a `static` (e.g. in a `static_cell::StaticCell`) or a local.
+pub struct WorldBuffers<
+    const BODIES: usize,
+    const CONTACTS: usize,
+    const JOINTS: usize = 16,
+    const CALLBACKS: usize = DEFAULT_POST_STEP_CALLBACKS,
+> {
     bodies: [Slot<Body>; BODIES],
     paths: [Slot<PolygonPath>; BODIES],
     proxies: [Proxy; BODIES],
@@ -154,9 +223,12 @@ pub struct WorldBuffers<const BODIES: usize, const CONTACTS: usize, const JOINTS
     sweep_order: [u32; BODIES],
     solver_bodies: [SolverBody; BODIES],
     contact_constraints: [ContactConstraint; CONTACTS],
+    post_step: [PostStepEntry; CALLBACKS],
 }
 
-impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffers<BODIES, CONTACTS, JOINTS> {
+impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize, const CALLBACKS: usize>
+    WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS>
+{
     /// Empty buffers.
     #[must_use]
     pub const fn new() -> Self {
@@ -174,6 +246,7 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffe
             sweep_order: [0; BODIES],
             solver_bodies: [SolverBody::EMPTY; BODIES],
             contact_constraints: [ContactConstraint::EMPTY; CONTACTS],
+            post_step: [EMPTY_POST_STEP; CALLBACKS],
         }
     }
 
@@ -192,12 +265,13 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> WorldBuffe
             sweep_order: ManagedSlice::Borrowed(&mut self.sweep_order[..]),
             solver_bodies: ManagedSlice::Borrowed(&mut self.solver_bodies[..]),
             contact_constraints: ManagedSlice::Borrowed(&mut self.contact_constraints[..]),
+            post_step: ManagedSlice::Borrowed(&mut self.post_step[..]),
         }
     }
 }
 
-impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize> Default
-    for WorldBuffers<BODIES, CONTACTS, JOINTS>
+impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize, const CALLBACKS: usize> Default
+    for WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS>
 {
     fn default() -> Self {
         Self::new()

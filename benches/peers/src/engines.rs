@@ -105,6 +105,7 @@ pub mod ar {
             paths: unique_polygons(scene).len().max(1),
             contacts: bodies.saturating_mul(scene.contacts_per_body).max(16),
             joints: scene.joints.len().max(1),
+            post_step_callbacks: 64,
         }
     }
 
