@@ -109,7 +109,13 @@
 //! 4. **Iteration order comes from simulation state alone**: bodies in slot order,
 //!    pairs in (lower slot, higher slot) order, hooks in registration order.
 //! 5. **Everything that shapes future steps is hashed**: bodies, the body allocator,
-//!    arbiters with their accumulated impulses and persistence counters.
+//!    arbiters with their accumulated impulses and persistence counters. The
+//!    post-step queue is drained before `step` and `remove_body` return, so nothing
+//!    is queued between steps.
+//! 6. **A full store never stops the game.** Candidate pairs and arbiters beyond
+//!    the contact capacity are skipped in key order (lowest keys kept) and counted
+//!    in the [`StepReport`]; [`WorldDef::strict_capacity`] makes it an error
+//!    instead. [`World::stats`] reports the high-water marks to size capacities by.
 //!
 //! # Limits (ranges that stay exact)
 //! | quantity | range | why |
@@ -147,7 +153,10 @@
 //! * `new BruteForceIndexing()` → the default [`Index`]; a custom indexing system
 //!   implements [`SpatialIndex`] and only finds pairs: the arbiter lifecycle the
 //!   manual asks every index to re-implement lives once in the engine.
-//! * `Array` → fixed-capacity stores; a full one returns [`Error::CapacityFull`].
+//! * `Array` → fixed-capacity stores; adding to a full one returns
+//!   [`Error::CapacityFull`]. A full contact store inside a step completes the step
+//!   (the lowest pair keys kept, the drops counted in the [`StepReport`]; see
+//!   [`World::step`] and [`World::stats`]).
 //! * `addCollisionHandler(a, b, begin, preSolve, postSolve, end)` →
 //!   [`World::add_collision_handler`] with a [`FnHandler`] or any
 //!   [`CollisionHandler`]; `addPostStepCallback(func, key)` →

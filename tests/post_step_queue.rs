@@ -37,10 +37,24 @@ fn begin_removes_b(arb: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
     true
 }
 
-fn snapshot_and_restore(w: &mut World<'_>) {
-    let mut snap = vec![0u8; w.snapshot_len()];
-    w.snapshot(&mut snap).expect("snapshot");
-    w.restore(&snap).expect("restore");
+/// A ball that touches nothing, so the scenes' worlds are not empty.
+fn add_bystander(w: &mut World<'_>) {
+    w.add_body(BodyDef::circle(s(1.0)).position(v(20.0, 20.0)).linear_velocity(v(1.0, 0.5)))
+        .expect("bystander");
+}
+
+/// Builds `scene` twice, snapshots and restores one, steps both: equal reports
+/// and equal hashes. Returns the report.
+fn restore_then_step_equals_stepping_on(scene: impl Fn() -> World<'static>) -> StepReport {
+    let (mut plain, mut rolled) = (scene(), scene());
+    let mut snap = vec![0u8; rolled.snapshot_len()];
+    rolled.snapshot(&mut snap).expect("snapshot");
+    rolled.restore(&snap).expect("restore");
+    assert_eq!(plain.state_hash(), rolled.state_hash());
+    let (rp, rr) = (plain.step(s(DT)).expect("step"), rolled.step(s(DT)).expect("step"));
+    assert_eq!(rp, rr);
+    assert_eq!(plain.state_hash(), rolled.state_hash(), "restoring the current state changed the future");
+    rp
 }
 
 #[test]
@@ -49,21 +63,17 @@ fn restore_drops_queued_post_step_callbacks() {
         let mut w = world();
         w.add_collision_handler(0, 0, FnHandler { end: Some(end_removes_partner), ..FnHandler::default() })
             .expect("handler");
+        add_bystander(&mut w);
         let a = w.add_body(BodyDef::circle(s(1.0)).position(v(50.0, 50.0))).expect("a");
         w.add_body(BodyDef::circle(s(1.0)).position(v(51.5, 50.0))).expect("b");
         for _ in 0..3 {
             w.step(s(DT)).expect("step");
         }
         w.remove_body(a).expect("remove"); // `end` queues the partner's removal...
-        assert_eq!(w.body_count(), 0, "...which ran before remove_body returned");
+        assert_eq!(w.body_count(), 1, "...which ran before remove_body returned");
         w
     };
-    let (mut plain, mut rolled) = (scene(), scene());
-    snapshot_and_restore(&mut rolled);
-    assert_eq!(plain.state_hash(), rolled.state_hash());
-    let (rp, rr) = (plain.step(s(DT)).expect("step"), rolled.step(s(DT)).expect("step"));
-    assert_eq!(rp, rr);
-    assert_eq!(plain.state_hash(), rolled.state_hash(), "restoring the current state changed the future");
+    restore_then_step_equals_stepping_on(scene);
 }
 
 #[test]
@@ -76,6 +86,7 @@ fn snapshot_between_frames_misses_queued_callbacks() {
             ..FnHandler::default()
         };
         w.add_collision_handler(0, 0, handler).expect("handler");
+        add_bystander(&mut w);
         w.add_body(BodyDef::circle(s(1.0)).position(v(50.0, 50.0))).expect("a");
         w.add_body(BodyDef::circle(s(1.0)).position(v(51.5, 50.0))).expect("b");
         w.add_body(BodyDef::circle(s(1.0)).position(v(48.5, 50.0))).expect("c");
@@ -83,16 +94,11 @@ fn snapshot_between_frames_misses_queued_callbacks() {
         let r = w.step(s(DT)).expect("step");
         assert!(r.post_step_callbacks >= 3, "the second round ran in this step: {r:?}");
         assert_eq!((r.post_step_dropped, r.post_step_refused), (0, 0));
-        assert_eq!(w.body_count(), 0, "every removal the chain asked for is done");
+        assert_eq!(w.body_count(), 1, "every removal the chain asked for is done");
         w
     };
-    let (mut plain, mut rolled) = (scene(), scene());
-    snapshot_and_restore(&mut rolled);
-    assert_eq!(plain.state_hash(), rolled.state_hash());
-    let (rp, rr) = (plain.step(s(DT)).expect("step"), rolled.step(s(DT)).expect("step"));
-    assert_eq!(rp, rr);
-    assert_eq!(rp.post_step_callbacks, 0, "nothing was left queued");
-    assert_eq!(plain.state_hash(), rolled.state_hash());
+    let next = restore_then_step_equals_stepping_on(scene);
+    assert_eq!(next.post_step_callbacks, 0, "nothing was left queued");
 }
 
 #[test]
@@ -170,11 +176,13 @@ fn a_thousand_balls_landing_are_all_removed_by_their_begin_callbacks() {
 #[test]
 fn a_small_queue_refuses_what_does_not_fit_and_the_report_counts_it() {
     REFUSED_SEEN.store(0, Ordering::Relaxed);
-    let (w, refused) = thousand_balls(16, 300);
+    // The old fixed queue: 64.
+    let (w, refused) = thousand_balls(arphysics::handler::DEFAULT_POST_STEP_CALLBACKS, 300);
     let seen = REFUSED_SEEN.load(Ordering::Relaxed);
-    assert!(refused > 0, "a row of 100 does not fit 16");
+    println!("queue of 64: {refused} refused, {} balls never removed", w.body_count() - 1);
+    assert!(refused > 0, "a row of 100 does not fit 64");
     assert_eq!(refused, seen, "every Err the callbacks saw is in a step report");
     assert_eq!(w.stats().post_step_refused, u64::from(seen));
-    assert_eq!(w.stats().peak_post_step_callbacks, 16);
+    assert_eq!(w.stats().peak_post_step_callbacks, 64);
     assert!(w.body_count() > 1, "refused removals were not retried (begin runs once per contact)");
 }

@@ -15,8 +15,10 @@ fn main() {
             let bytes = std::fs::read(entry.expect("entry").path()).expect("read");
             files += 1;
             let Ok(input) = Input::arbitrary_take_rest(Unstructured::new(&bytes)) else { continue };
-            let Ok(mut r) = Runner::new(&input.world, Storage::with_capacities(input.world.capacities()).expect("small capacities fit the heap"))
-            else {
+            let Ok(mut r) = Runner::new(
+                &input.world,
+                Storage::with_capacities(input.world.capacities()).expect("small capacities fit the heap"),
+            ) else {
                 continue;
             };
             worlds += 1;

@@ -13,7 +13,11 @@ fn main() {
     let spec = &input.scene.world;
     let ops: Vec<&Op> = input.scene.ops.iter().take(MAX_OPS).collect();
     let split = usize::from(input.split) % (ops.len() + 1);
-    let mut a = Runner::new(spec, Storage::with_capacities(spec.capacities()).expect("small capacities fit the heap")).expect("world");
+    let mut a = Runner::new(
+        spec,
+        Storage::with_capacities(spec.capacities()).expect("small capacities fit the heap"),
+    )
+    .expect("world");
     for op in &ops[..split] {
         let o = a.apply(op);
         println!("{op:?} -> {o:?}");

@@ -13,7 +13,10 @@ use arphysics_fuzz::{Input, Outcome, Runner, SnapshotInput, MAX_OPS};
 
 fn behaviours(input: &Input) -> BTreeSet<String> {
     let mut seen = BTreeSet::new();
-    let Ok(mut r) = Runner::new(&input.world, Storage::with_capacities(input.world.capacities()).expect("small capacities fit the heap")) else {
+    let Ok(mut r) = Runner::new(
+        &input.world,
+        Storage::with_capacities(input.world.capacities()).expect("small capacities fit the heap"),
+    ) else {
         return seen;
     };
     for op in input.ops.iter().take(MAX_OPS) {

@@ -20,7 +20,8 @@ fuzz_target!(|input: Input| {
     let caps = input.world.capacities();
     let mut big = Box::new(Big::new());
     let a = Runner::new(&input.world, Storage::with_capacities(caps).expect("small capacities fit the heap"));
-    let a2 = Runner::new(&input.world, Storage::with_capacities(caps).expect("small capacities fit the heap"));
+    let a2 =
+        Runner::new(&input.world, Storage::with_capacities(caps).expect("small capacities fit the heap"));
     let b = Runner::new(&input.world, big.storage());
     let (mut a, mut a2, mut b) = match (a, a2, b) {
         (Ok(a), Ok(a2), Ok(b)) => (a, a2, b),

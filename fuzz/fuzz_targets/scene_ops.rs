@@ -30,7 +30,8 @@ fuzz_target!(|input: Input| {
     // Heap storage sized by the input, or static buffers (the no-allocator path)
     // when the spec asks for an odd number of paths.
     if input.world.paths.is_multiple_of(2) {
-        let storage = Storage::with_capacities(input.world.capacities()).expect("small capacities fit the heap");
+        let storage =
+            Storage::with_capacities(input.world.capacities()).expect("small capacities fit the heap");
         if let Ok(mut runner) = Runner::new(&input.world, storage) {
             run(&mut runner, &input);
         }

@@ -33,7 +33,12 @@ fuzz_target!(|input: SnapshotInput| {
     // After the snapshot: only ops whose effect the snapshot captures.
     let after: Vec<&Op> = after.iter().copied().filter(|op| op.is_state_op()).collect();
 
-    let Ok(mut a) = Runner::new(spec, Storage::with_capacities(spec.capacities()).expect("small capacities fit the heap")) else { return };
+    let Ok(mut a) = Runner::new(
+        spec,
+        Storage::with_capacities(spec.capacities()).expect("small capacities fit the heap"),
+    ) else {
+        return;
+    };
     let mut big = Box::new(Big::new());
     let mut b = Runner::new(spec, big.storage()).expect("a larger world of a valid definition");
     // Restore brings back the state, not the last step's outputs.

@@ -178,3 +178,59 @@ pub trait SpatialIndex {
 pub fn proxies_may_touch(a: &Proxy, b: &Proxy) -> bool {
     !(a.is_static && b.is_static) && a.aabb.overlaps(b.aabb)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The pairs a sink of `cap` slots keeps from `reports`, and how many it dropped.
+    fn kept(cap: usize, reports: &[(u32, u32)]) -> (std::vec::Vec<(u32, u32)>, usize) {
+        let mut buf = std::vec![(0u32, 0u32); cap];
+        let accept = |_: u32, _: u32| true;
+        let mut sink = PairSink::new(&mut buf, false, &accept);
+        for &(a, b) in reports {
+            assert!(sink.push(a, b), "a lenient sink never asks the index to stop");
+        }
+        let (n, dropped) = (sink.len, sink.dropped);
+        let mut out = buf[..n].to_vec();
+        out.sort_unstable();
+        out.dedup();
+        (out, dropped)
+    }
+
+    #[test]
+    fn a_full_sink_keeps_the_lowest_distinct_keys_in_any_report_order() {
+        let pairs: std::vec::Vec<(u32, u32)> = (0..12u32).map(|k| (k % 5, 5 + k)).collect();
+        let mut lowest = pairs.clone();
+        lowest.sort_unstable();
+        lowest.truncate(5);
+        let mut orders = std::vec![pairs.clone()];
+        let mut reversed = pairs.clone();
+        reversed.reverse();
+        orders.push(reversed);
+        // Every pair three times, swapped, interleaved.
+        orders.push(pairs.iter().flat_map(|&(a, b)| [(b, a), (a, b), (a, b)]).collect());
+        for reports in orders {
+            let (got, dropped) = kept(5, &reports);
+            assert_eq!(got, lowest, "reports {reports:?}");
+            assert!(dropped >= 7, "12 distinct pairs in 5 slots drop at least 7: {dropped}");
+        }
+    }
+
+    #[test]
+    fn duplicates_and_self_pairs_use_no_capacity() {
+        let reports = [(1, 2), (2, 1), (3, 3), (1, 2), (0, 4), (4, 0), (1, 2)];
+        assert_eq!(kept(2, &reports), (std::vec![(0, 4), (1, 2)], 0));
+    }
+
+    #[test]
+    fn a_strict_sink_stops_at_the_first_pair_that_does_not_fit() {
+        let mut buf = [(0u32, 0u32); 1];
+        let accept = |_: u32, _: u32| true;
+        let mut sink = PairSink::new(&mut buf, true, &accept);
+        assert!(sink.push(0, 1));
+        assert!(sink.push(1, 0), "a duplicate fits");
+        assert!(!sink.push(0, 2));
+        assert!(sink.overflowed);
+    }
+}

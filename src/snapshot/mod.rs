@@ -30,7 +30,10 @@
 //! not state; a snapshot records which generator slots hold a custom generator and
 //! `restore` requires the same slots to hold one. Per-step outputs (the impulses a
 //! step reports in `post_solve`, a joint's `step_impulse`) are recomputed by the
-//! next step and are not saved.
+//! next step and are not saved. Queued post-step callbacks need no record: the
+//! queue is empty whenever the game can snapshot (`step` and `remove_body` drain
+//! it before they return; see [`crate::handler`]). Nor do the diagnostics of
+//! [`World::stats`].
 
 mod apply;
 mod cursor;
@@ -184,6 +187,10 @@ impl World<'_> {
 
     /// Writes the state into `buf`; returns the bytes written. Allocates nothing.
     ///
+    /// Nothing is pending between steps: the post-step queue is empty whenever
+    /// `step` or `remove_body` has returned, so the snapshot misses no queued
+    /// callback. [`World::stats`] (diagnostics) is not in it.
+    ///
     /// # Errors
     /// [`Error::BufferTooSmall`] with the size needed; `buf` is then untouched.
     pub fn snapshot(&self, buf: &mut [u8]) -> Result<usize, Error> {
@@ -196,7 +203,9 @@ impl World<'_> {
 
     /// Restores a state written by [`World::snapshot`]. Bodies, arbiters, joints
     /// and built-in generators come back exactly, with the same handles; stepping
-    /// on gives the same bits as if the world had never left that state.
+    /// on gives the same bits as if the world had never left that state. There
+    /// is no queued post-step callback to lose (the queue is empty between
+    /// steps); [`World::stats`] is left as it is.
     ///
     /// The whole buffer is checked before anything changes.
     ///
