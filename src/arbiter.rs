@@ -26,7 +26,9 @@
 use managed::ManagedSlice;
 
 use crate::body::BodyHandle;
-use crate::math::scalar::{self, Scalar, ZERO};
+use crate::error::Error;
+use crate::limits::{check_friction, check_restitution};
+use crate::math::scalar::{Scalar, ZERO};
 use crate::math::Vector2;
 
 /// The manual's arbiter states.
@@ -215,10 +217,18 @@ impl Arbiter {
         self.friction
     }
 
-    /// Changes the friction for this pair (clamped to ≥ 0); from `pre_solve`, it
-    /// applies to this step.
-    pub fn set_friction(&mut self, mu: Scalar) {
-        self.friction = mu.max(ZERO);
+    /// Changes the friction for this pair; from `pre_solve`, it applies to this
+    /// step. The range is a body's: [0, [`MAX_FRICTION`](crate::limits::MAX_FRICTION)]
+    /// (100), checked by the same function as [`World::add_body`](crate::World::add_body)
+    /// and [`World::restore`](crate::World::restore).
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] with `"friction"` outside that range; the arbiter is
+    /// unchanged.
+    pub fn set_friction(&mut self, mu: Scalar) -> Result<(), Error> {
+        check_friction(mu)?;
+        self.friction = mu;
+        Ok(())
     }
 
     /// Restitution used for this pair.
@@ -228,9 +238,18 @@ impl Arbiter {
         self.restitution
     }
 
-    /// Changes the restitution for this pair (clamped to [0, 1]).
-    pub fn set_restitution(&mut self, e: Scalar) {
-        self.restitution = e.clamp(ZERO, scalar::ONE);
+    /// Changes the restitution for this pair; from `pre_solve`, it applies to
+    /// this step. The range is a body's: [0, 1], checked by the same function as
+    /// [`World::add_body`](crate::World::add_body) and
+    /// [`World::restore`](crate::World::restore).
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] with `"restitution"` outside [0, 1]; the arbiter is
+    /// unchanged.
+    pub fn set_restitution(&mut self, e: Scalar) -> Result<(), Error> {
+        check_restitution(e)?;
+        self.restitution = e;
+        Ok(())
     }
 
     /// Total normal impulse over the last step, summed over the contact points

@@ -38,7 +38,8 @@ pub struct BodyDef {
     pub linear_velocity: Vector2,
     /// Angular velocity, rad/s, counter-clockwise positive (default 0).
     pub angular_velocity: Scalar,
-    /// Mass or density (default density 1 kg/m²).
+    /// Mass or density (default density 1 kg/m²). Ignored for static and
+    /// kinematic bodies, whose mass data is all zeros.
     pub mass: MassSpec,
     /// Coulomb friction coefficient, ≥ 0 (default 0.6).
     pub friction: Scalar,
@@ -137,7 +138,12 @@ impl BodyDef {
         self.body_type(BodyType::Kinematic)
     }
 
-    /// Sets the total mass in kg. As in the manual, a mass of 0 makes the body static.
+    /// Sets the total mass in kg, in [[`MIN_MASS`](crate::geometry::mass::MIN_MASS),
+    /// [`MAX_MASS`](crate::geometry::mass::MAX_MASS)] (see the limits table in the
+    /// crate docs: the moment of inertia it gives must be in range too). As in the
+    /// manual, a mass of 0 makes the body static. A static or kinematic body
+    /// ignores its mass or density (whatever the value): its mass data is all
+    /// zeros, which is what makes it immovable.
     #[must_use]
     pub fn mass(mut self, kg: Scalar) -> Self {
         self.mass = MassSpec::Mass(kg);

@@ -121,8 +121,13 @@
 //! | quantity | range | why |
 //! |---|---|---|
 //! | world bounds | within ±2^20 m ([`world::MAX_COORDINATE`]) | positions never overflow |
-//! | body radius | ≤ 128 m ([`world::MAX_BODY_RADIUS`]) | inertia ∝ r⁴ stays in range |
-//! | mass | 0.001 – 100,000 kg ([`geometry::mass`]) | momentum ≤ 2e8 |
+//! | body radius | ≤ 128 m ([`world::MAX_BODY_RADIUS`]); circles ≥ 1 cm keep their inertia to 1 % (below ≈ 3.5 mm it rounds to 0: `inertia` error) | inertia ∝ r⁴ stays in range |
+//! | mass | 0.001 – 100,000 kg ([`geometry::mass`]); ignored (all zeros) for static and kinematic bodies | momentum ≤ 2e8 |
+//! | moment of inertia | 1e-6 – 1e6 kg·m² ([`geometry::mass::MAX_INERTIA`]): a circle's is m·r²/2, a w × h box's m·(w² + h²)/12, so a 128 m circle weighs ≤ 122 kg, a 1 cm circle ≥ 20 g | angular momentum ≤ 2.6e8 at 256 rad/s; 1/inertia ≤ 1e6 |
+//! | friction, restitution | 0 – 100 ([`limits::MAX_FRICTION`]), 0 – 1; bodies and arbiters alike | friction bound μ·λn |
+//! | joints | lengths ≤ 1,024 m, stiffness ≤ 1e6 N/m, damping ≤ 1e5 N·s/m, motor speed ≤ ±512 rad/s ([`limits`]) | spring forces exact; explicit springs stable |
+//! | force generators | ±16,384 m/s² per component ([`limits::MAX_ACCELERATION`]), ±1.6e9 N ([`limits::MAX_FORCE`]), points within ±2^20 m | momentum after forces in range |
+//! | arbiter persistence | 0 – 256 steps ([`limits::MAX_ARBITER_PERSISTENCE`]) | separated arbiters expire |
 //! | speed | ≤ 2,048 m/s configurable, default 400 ([`WorldDef::max_linear_speed`]) | squared speeds exact |
 //! | spin | ≤ 256 rad/s, default 200, and ≤ π/4 per step | angular momentum in range |
 //! | time step | (0, 0.25] s ([`MAX_TIME_STEP`]) | bounded motion per step |
@@ -195,8 +200,8 @@ pub use constraint::{
 };
 pub use error::Error;
 pub use force::{
-    ForceGenerator, Generator, GravityForceGenerator, GravityToPointForceGenerator, LinearForceGenerator,
-    Targets,
+    ForceGenerator, Generator, GeneratorMut, GravityForceGenerator, GravityToPointForceGenerator,
+    LinearForceGenerator, Targets,
 };
 pub use geometry::{MassData, PolygonPath};
 pub use handler::{CallbackContext, CollisionHandler, FnHandler, Handler, PostStepFn};

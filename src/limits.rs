@@ -7,9 +7,18 @@
 //! stays inside that range; inputs beyond a limit are an `Err` at the API edge,
 //! and the limits stage (`enforce`) holds moving bodies to the speed limits and the bounds after
 //! every step.
+//!
+//! Every value has one check, called by the constructor (`add_body`, `add_joint`,
+//! `add_force_generator`, `World::new`), by its setter and by `restore`: a world's
+//! own snapshot therefore always restores, and a rejected value leaves the world
+//! unchanged. The table in the crate docs lists every range; the reasons are on
+//! the constants below and in [`geometry::mass`](crate::geometry::mass) (mass and
+//! moment of inertia: a body is legal only when both are in range, so mass ×
+//! size² is bounded, e.g. a 128 m circle weighs at most 122 kg).
 
 use crate::arena::Arena;
 use crate::body::{compute_aabb, Body, BodyType};
+use crate::error::Error;
 use crate::geometry::PolygonPath;
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::Vector2;
@@ -38,8 +47,100 @@ pub const MAX_LINEAR_SPEED_LIMIT: Scalar = Scalar::from_int(2048);
 /// angular momentum stays ≤ 2.6e8, 8× inside Q32.32's range.
 pub const MAX_ANGULAR_SPEED_LIMIT: Scalar = Scalar::from_int(256);
 
-/// Largest friction coefficient accepted.
+/// Largest friction coefficient accepted, on a body and on an arbiter
+/// ([`Arbiter::set_friction`](crate::Arbiter::set_friction)).
+///
+/// Real materials stay below 2; a coefficient of 100 already holds a body on an
+/// 89.4° slope, so larger ones only feed the saturating friction bound μ·λn.
 pub const MAX_FRICTION: Scalar = Scalar::from_int(100);
+
+/// Largest restitution accepted: 1 (elastic). Above it a collision would add
+/// energy at every bounce.
+pub const MAX_RESTITUTION: Scalar = crate::math::scalar::ONE;
+
+/// Largest steps an arbiter is kept after its bodies separate
+/// ([`WorldDef::arbiter_persistence`](crate::WorldDef::arbiter_persistence)):
+/// 256 steps (4 s at 60 Hz).
+///
+/// A separated arbiter keeps its slot in the arbiter store for that many steps;
+/// at `u32::MAX` arbiters would never expire and the store would fill with pairs
+/// that no longer touch. Warm starting only helps contacts that flicker for a few
+/// steps, so nothing is lost by the bound.
+pub const MAX_ARBITER_PERSISTENCE: u32 = 256;
+
+/// Largest acceleration a built-in force generator applies, per component,
+/// m/s² (2^14 ≈ 1,670 g): [`GravityForceGenerator`](crate::GravityForceGenerator)'s
+/// gravity and [`GravityToPointForceGenerator`](crate::GravityToPointForceGenerator)'s
+/// acceleration.
+///
+/// In the longest step (0.25 s) one generator changes a velocity by at most
+/// 4,096 m/s per component, twice the highest speed limit: it can turn a body at
+/// top speed around in one step, and the heaviest body's momentum after the
+/// forces stays below 1e5 kg · (2,048 + 5,793) m/s ≈ 7.9e8 kg·m/s, 2.7× inside
+/// Q32.32's range.
+pub const MAX_ACCELERATION: Scalar = Scalar::from_int(1 << 14);
+
+/// Largest force a [`LinearForceGenerator`](crate::LinearForceGenerator) applies,
+/// per component, N: [`MAX_MASS`](crate::geometry::mass::MAX_MASS) ×
+/// [`MAX_ACCELERATION`] ≈ 1.6e9 N, the force that gives the heaviest body the
+/// largest acceleration.
+///
+/// The momentum it adds in the longest step (F·dt ≤ 4.1e8 N·s) stays inside
+/// Q32.32's range whatever the mass. On a light body the velocity change F·dt/m
+/// can exceed the speed limits; it saturates and the step clamps the speed, as it
+/// does for any velocity a game sets.
+pub const MAX_FORCE: Scalar = Scalar::from_int(1_638_400_000);
+
+/// Largest spring stiffness, N/m (1e6).
+///
+/// The spring force k·(ℓ − ℓ₀) stays exact for stretches up to 2,147 m, twice
+/// the longest joint ([`MAX_JOINT_LENGTH`]). Springs are explicit forces, stable
+/// only while k·h² < m: at 1e6 N/m and a 1/240 s sub-step only bodies above
+/// 17 kg stay stable, so stiffer springs are never useful (use a rod).
+pub const MAX_STIFFNESS: Scalar = Scalar::from_int(1_000_000);
+
+/// Largest spring damping, N·s/m (1e5).
+///
+/// At a relative speed of 4,096 m/s (two bodies at the highest speed limit) the
+/// damping force is 4.1e8 N, 5× inside Q32.32's range. An explicit damper is
+/// stable only while c·h < 2m, so a larger damping is never useful.
+pub const MAX_DAMPING: Scalar = Scalar::from_int(100_000);
+
+/// Longest joint: a rod's or rope's length and a spring's rest length, m (1,024 =
+/// 8 × [`MAX_BODY_RADIUS`]). Squared anchor distances up to this length stay
+/// inside Q32.32's range for squared quantities (1,024² ≈ 1e6).
+pub const MAX_JOINT_LENGTH: Scalar = Scalar::from_int(1024);
+
+/// Fastest relative spin a pivot's motor may target, rad/s (512 = 2 ×
+/// [`MAX_ANGULAR_SPEED_LIMIT`]): the largest ωB − ωA two bodies can have under
+/// the highest spin limit; a faster target could never be reached.
+pub const MAX_MOTOR_SPEED: Scalar = Scalar::from_int(512);
+
+/// `Ok` when `lo ≤ v ≤ hi`, else [`Error::OutOfRange`] naming `what`: the one
+/// range check every constructor, setter and `restore` calls.
+pub(crate) fn check_range(v: Scalar, lo: Scalar, hi: Scalar, what: &'static str) -> Result<(), Error> {
+    if v >= lo && v <= hi {
+        Ok(())
+    } else {
+        Err(Error::OutOfRange { what })
+    }
+}
+
+/// A friction coefficient: [0, [`MAX_FRICTION`]] (bodies, arbiters, restore).
+pub(crate) fn check_friction(mu: Scalar) -> Result<(), Error> {
+    check_range(mu, ZERO, MAX_FRICTION, "friction")
+}
+
+/// A restitution: [0, [`MAX_RESTITUTION`]] (bodies, arbiters, restore).
+pub(crate) fn check_restitution(e: Scalar) -> Result<(), Error> {
+    check_range(e, ZERO, MAX_RESTITUTION, "restitution")
+}
+
+/// Each component of `v` in [−`max`, `max`].
+pub(crate) fn check_components(v: Vector2, max: Scalar, what: &'static str) -> Result<(), Error> {
+    check_range(v.x, -max, max, what)?;
+    check_range(v.y, -max, max, what)
+}
 
 /// Speculative contact distance, in metres (Box2D v3's 4 × linear slop): shapes
 /// closer than this get contact points before they touch, so the solver can stop

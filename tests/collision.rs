@@ -360,12 +360,12 @@ fn removing_a_body_in_a_post_step_callback_ends_its_arbiters() {
 }
 
 fn bouncy(a: &mut Arbiter, _: &mut CallbackContext<'_>) -> bool {
-    a.set_restitution(s(1.0));
+    a.set_restitution(s(1.0)).expect("1 is a legal restitution");
     true
 }
 
 fn slippery(a: &mut Arbiter, _: &mut CallbackContext<'_>) -> bool {
-    a.set_friction(s(0.0));
+    a.set_friction(s(0.0)).expect("0 is a legal friction");
     true
 }
 

@@ -17,7 +17,7 @@ use arphysics::index::SortAndSweepIndex;
 use arphysics::query::{QueryFilter, QueryShape, RayHit};
 use arphysics::{
     Arbiter, Body, BodyDef, BodyHandle, BodyType, CallbackContext, Capacities, ConstraintHandle, Error,
-    FnHandler, ForceGenerator, Generator, GeneratorHandle, GravityForceGenerator,
+    FnHandler, ForceGenerator, Generator, GeneratorHandle, GeneratorMut, GravityForceGenerator,
     GravityToPointForceGenerator, Handle, Handler, Hook, Index, Joint, JointDef, JointHandle, JointKind,
     LinearForceGenerator, MaxTorque, Motor, PairSink, PathHandle, PolygonPath, Proxy, Rect, Rot, Scalar,
     SpatialIndex, Storage, Transform, Vector2, World, WorldDef,
@@ -839,18 +839,22 @@ fn pre_solve_fn(i: u8) -> fn(&mut Arbiter, &mut CallbackContext<'_>) -> bool {
     match i % 8 {
         0 => |_, _| true,
         1 => |_, _| false,
+        // Out-of-range values are an error that changes nothing; the range's
+        // ends are accepted.
         2 => |a, _| {
-            a.set_friction(Scalar::MAX);
+            let _ = a.set_friction(Scalar::MAX);
+            let _ = a.set_friction(arphysics::limits::MAX_FRICTION);
             true
         },
         3 => |a, _| {
-            a.set_restitution(Scalar::MAX);
-            a.set_friction(Scalar::ZERO);
+            let _ = a.set_restitution(Scalar::MAX);
+            let _ = a.set_restitution(Scalar::ONE);
+            let _ = a.set_friction(Scalar::ZERO);
             true
         },
         4 => |a, _| {
-            a.set_friction(Scalar::MIN);
-            a.set_restitution(Scalar::MIN);
+            let _ = a.set_friction(Scalar::MIN);
+            let _ = a.set_restitution(Scalar::MIN);
             a.increase_step_count();
             parity(a)
         },
@@ -1315,27 +1319,27 @@ impl<'w> Runner<'w> {
                     },
                     None => None,
                 };
-                let r = self.world.force_generator_mut(h.get(&self.generators)).map(|g| match g {
-                    Generator::Linear(g) => {
-                        g.force = e.value.get();
+                let r = self.world.force_generator_mut(h.get(&self.generators)).and_then(|g| match g {
+                    GeneratorMut::Linear(g) => {
                         if let Some(t) = t {
-                            g.targets = t;
+                            g.set_targets(t);
                         }
+                        g.set_force(e.value.get())
                     }
-                    Generator::Gravity(g) => {
-                        g.gravity = e.value.get();
+                    GeneratorMut::Gravity(g) => {
                         if let Some(t) = t {
-                            g.targets = t;
+                            g.set_targets(t);
                         }
+                        g.set_gravity(e.value.get())
                     }
-                    Generator::GravityToPoint(g) => {
-                        g.point = e.value.get();
-                        g.acceleration = e.scalar.get();
+                    GeneratorMut::GravityToPoint(g) => {
                         if let Some(t) = t {
-                            g.targets = t;
+                            g.set_targets(t);
                         }
+                        g.set_point(e.value.get())?;
+                        g.set_acceleration(e.scalar.get())
                     }
-                    Generator::Custom(_) => {}
+                    GeneratorMut::Custom(_) => Ok(()),
                 });
                 unit_outcome(r)
             }
@@ -1374,7 +1378,7 @@ impl<'w> Runner<'w> {
             }
             Op::RemoveJoint(h) => unit_outcome(self.world.remove_joint(h.get(&self.joints))),
             Op::SetMotor(h, m) => unit_outcome(
-                self.world.joint_mut(h.get(&self.joints)).map(|j| j.set_motor(m.map(MotorSpec::get))),
+                self.world.joint_mut(h.get(&self.joints)).and_then(|j| j.set_motor(m.map(MotorSpec::get))),
             ),
             Op::AddConstraint(c) => {
                 let user = FuzzConstraint {

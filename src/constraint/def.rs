@@ -4,7 +4,9 @@
 
 use crate::body::{Body, BodyHandle};
 use crate::error::Error;
-use crate::limits::MAX_BODY_RADIUS;
+use crate::limits::{
+    check_range, MAX_BODY_RADIUS, MAX_DAMPING, MAX_JOINT_LENGTH, MAX_MOTOR_SPEED, MAX_STIFFNESS,
+};
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rect, Vector2};
 
@@ -21,7 +23,8 @@ pub enum MaxTorque {
 /// A pivot's motor: drives the relative angular speed ωB − ωA towards `speed`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Motor {
-    /// Target relative angular speed, rad/s.
+    /// Target relative angular speed, rad/s, within
+    /// ±[`MAX_MOTOR_SPEED`](crate::limits::MAX_MOTOR_SPEED) (512).
     pub speed: Scalar,
     /// Torque limit.
     pub max_torque: MaxTorque,
@@ -32,28 +35,28 @@ pub struct Motor {
 pub enum JointKind {
     /// A spring of `stiffness` N/m and rest length `rest_length` m.
     Spring {
-        /// N/m, ≥ 0.
+        /// N/m, in [0, [`MAX_STIFFNESS`](crate::limits::MAX_STIFFNESS)] (1e6).
         stiffness: Scalar,
-        /// m, ≥ 0.
+        /// m, in [0, [`MAX_JOINT_LENGTH`](crate::limits::MAX_JOINT_LENGTH)] (1,024).
         rest_length: Scalar,
     },
     /// A spring with a damper of `damping` N·s/m.
     DampedSpring {
-        /// N/m, ≥ 0.
+        /// N/m, in [0, [`MAX_STIFFNESS`](crate::limits::MAX_STIFFNESS)] (1e6).
         stiffness: Scalar,
-        /// N·s/m, ≥ 0.
+        /// N·s/m, in [0, [`MAX_DAMPING`](crate::limits::MAX_DAMPING)] (1e5).
         damping: Scalar,
-        /// m, ≥ 0.
+        /// m, in [0, [`MAX_JOINT_LENGTH`](crate::limits::MAX_JOINT_LENGTH)] (1,024).
         rest_length: Scalar,
     },
     /// Keeps the anchors exactly `length` m apart (the manual's Rod).
     Rod {
-        /// m, > 0.
+        /// m, in (0, [`MAX_JOINT_LENGTH`](crate::limits::MAX_JOINT_LENGTH)] (1,024).
         length: Scalar,
     },
     /// Keeps the anchors at most `max_length` m apart; slack below.
     Rope {
-        /// m, > 0.
+        /// m, in (0, [`MAX_JOINT_LENGTH`](crate::limits::MAX_JOINT_LENGTH)] (1,024).
         max_length: Scalar,
     },
     /// Pins the anchors together; the bodies turn freely, within optional limits
@@ -177,7 +180,8 @@ pub(crate) fn validate(def: &JointDef, a: &Body, b: Option<&Body>, bounds: Rect)
 }
 
 /// The checks on a definition's own values (no bodies needed): anchors, kind
-/// parameters, break impulse. Also used to validate snapshots.
+/// parameters, break impulse. Used by [`World::add_joint`](crate::World::add_joint)
+/// and by `restore`; the setters call the same per-value checks.
 pub(crate) fn validate_params(def: &JointDef) -> Result<(), Error> {
     let sane = |v: Vector2| v.x.abs() <= max_anchor() && v.y.abs() <= max_anchor();
     if !sane(def.anchor_a) || (def.body_b.is_some() && !sane(def.anchor_b)) {
@@ -189,20 +193,18 @@ pub(crate) fn validate_params(def: &JointDef) -> Result<(), Error> {
     {
         return Err(Error::OutOfRange { what: "anchor" });
     }
-    let non_negative = |v: Scalar, what| if v < ZERO { Err(Error::OutOfRange { what }) } else { Ok(()) };
-    let limit = MAX_BODY_RADIUS * Scalar::from_int(8);
     match def.kind {
         JointKind::Spring { stiffness, rest_length } => {
-            non_negative(stiffness, "stiffness")?;
-            non_negative(rest_length, "rest length")?;
+            check_range(stiffness, ZERO, MAX_STIFFNESS, "stiffness")?;
+            check_range(rest_length, ZERO, MAX_JOINT_LENGTH, "rest length")?;
         }
         JointKind::DampedSpring { stiffness, damping, rest_length } => {
-            non_negative(stiffness, "stiffness")?;
-            non_negative(damping, "damping")?;
-            non_negative(rest_length, "rest length")?;
+            check_range(stiffness, ZERO, MAX_STIFFNESS, "stiffness")?;
+            check_range(damping, ZERO, MAX_DAMPING, "damping")?;
+            check_range(rest_length, ZERO, MAX_JOINT_LENGTH, "rest length")?;
         }
         JointKind::Rod { length } | JointKind::Rope { max_length: length } => {
-            if length <= ZERO || length > limit {
+            if length <= ZERO || length > MAX_JOINT_LENGTH {
                 return Err(Error::OutOfRange { what: "length" });
             }
         }
@@ -212,9 +214,7 @@ pub(crate) fn validate_params(def: &JointDef) -> Result<(), Error> {
                     return Err(Error::OutOfRange { what: "angle limits" });
                 }
             }
-            if let Some(Motor { max_torque: MaxTorque::Limited(t), .. }) = motor {
-                non_negative(t, "max torque")?;
-            }
+            validate_motor(motor)?;
         }
         JointKind::Weld => {}
     }
@@ -222,6 +222,18 @@ pub(crate) fn validate_params(def: &JointDef) -> Result<(), Error> {
         if limit <= ZERO {
             return Err(Error::OutOfRange { what: "break impulse" });
         }
+    }
+    Ok(())
+}
+
+/// A pivot's motor: speed within ±[`MAX_MOTOR_SPEED`], a torque limit ≥ 0. The
+/// one check of a motor, used by `add_joint`, [`Joint::set_motor`](super::Joint::set_motor)
+/// and `restore`.
+pub(crate) fn validate_motor(motor: Option<Motor>) -> Result<(), Error> {
+    let Some(Motor { speed, max_torque }) = motor else { return Ok(()) };
+    check_range(speed, -MAX_MOTOR_SPEED, MAX_MOTOR_SPEED, "motor speed")?;
+    if let MaxTorque::Limited(t) = max_torque {
+        check_range(t, ZERO, Scalar::MAX, "max torque")?;
     }
     Ok(())
 }

@@ -5,11 +5,13 @@
 
 use crate::arena::Handle;
 use crate::body::Body;
+use crate::error::Error;
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::Matrix22;
 use crate::math::{Rot, Vector2};
 use crate::solver::{Bias, Softness, SolverBody};
 
+use super::def::validate_motor;
 use super::maths::point_mass_inverse;
 use super::rod::Distance;
 use super::{pivot, rod, spring, weld, JointDef, JointKind, Motor};
@@ -69,11 +71,21 @@ impl Joint {
         self.step_linear.length()
     }
 
-    /// Changes the motor of a pivot (no effect on other kinds).
-    pub fn set_motor(&mut self, motor: Option<Motor>) {
+    /// Changes the motor of a pivot (no effect on other kinds), checked exactly
+    /// as [`World::add_joint`](crate::World::add_joint) and
+    /// [`World::restore`](crate::World::restore) check it, so the world's
+    /// snapshot always restores.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] with `"motor speed"` for a speed beyond
+    /// ±[`MAX_MOTOR_SPEED`](crate::limits::MAX_MOTOR_SPEED) or `"max torque"` for
+    /// a negative torque limit; the joint is unchanged.
+    pub fn set_motor(&mut self, motor: Option<Motor>) -> Result<(), Error> {
+        validate_motor(motor)?;
         if let JointKind::Pivot { motor: m, .. } = &mut self.def.kind {
             *m = motor;
         }
+        Ok(())
     }
 }
 

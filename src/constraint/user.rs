@@ -18,6 +18,14 @@ pub type ConstraintHandle = Handle<ConstraintMarker>;
 
 /// A game's constraint: applies impulses to its two bodies in every solver
 /// iteration (the manual's `Constraint::solve`).
+///
+/// # If it panics
+/// A panic unwinds out of [`World::step`](crate::World::step) with the world
+/// half-stepped: the solver's copy of the bodies is partly written back, some sub-steps are done and positions partly integrated. The world stays memory-safe and usable, but its state
+/// is not one any uninterrupted run reaches. The way back is the snapshot taken
+/// before the step: [`World::restore`](crate::World::restore) it (a game that
+/// catches panics with `std::panic::catch_unwind` should restore before it
+/// steps again).
 pub trait Constraint {
     /// Called once per step before the iterations, with the step length `dt`
     /// (optional: precompute effective masses here).

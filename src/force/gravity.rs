@@ -2,16 +2,21 @@
 
 use super::{ForceGenerator, Targets};
 use crate::body::{Body, BodyHandle};
+use crate::error::Error;
+use crate::limits::{check_components, MAX_ACCELERATION};
 use crate::math::{Scalar, Vector2};
 
 /// Uniform gravity: the force is scaled by each body's mass, so every body gets
 /// the same acceleration `g` (m/s²): Δv = g · dt.
+///
+/// Each component of `g` is within ±[`MAX_ACCELERATION`] (16,384 m/s²), checked
+/// by [`World::add_force_generator`](crate::World::add_force_generator), by
+/// [`set_gravity`](Self::set_gravity) and by `restore`, so a step cannot leave
+/// Q32.32's range (see [`MAX_ACCELERATION`] for why).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct GravityForceGenerator {
-    /// The acceleration in m/s², e.g. (0, −9.81).
-    pub gravity: Vector2,
-    /// The bodies it acts on.
-    pub targets: Targets,
+    pub(crate) gravity: Vector2,
+    pub(crate) targets: Targets,
 }
 
 impl GravityForceGenerator {
@@ -27,6 +32,43 @@ impl GravityForceGenerator {
         self.targets = targets;
         self
     }
+
+    /// The acceleration in m/s², e.g. (0, −9.81).
+    #[must_use]
+    pub fn gravity(&self) -> Vector2 {
+        self.gravity
+    }
+
+    /// The bodies it acts on.
+    #[must_use]
+    pub fn targets(&self) -> &Targets {
+        &self.targets
+    }
+
+    /// Changes the acceleration (m/s²).
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] with `"gravity"` for a component beyond
+    /// ±[`MAX_ACCELERATION`]; the generator is unchanged.
+    pub fn set_gravity(&mut self, gravity: Vector2) -> Result<(), Error> {
+        check_gravity(gravity)?;
+        self.gravity = gravity;
+        Ok(())
+    }
+
+    /// Changes the bodies it acts on (any list is valid).
+    pub fn set_targets(&mut self, targets: Targets) {
+        self.targets = targets;
+    }
+
+    /// The checks of `add_force_generator` and `restore`.
+    pub(crate) fn validate(&self) -> Result<(), Error> {
+        check_gravity(self.gravity)
+    }
+}
+
+fn check_gravity(g: Vector2) -> Result<(), Error> {
+    check_components(g, MAX_ACCELERATION, "gravity")
 }
 
 impl ForceGenerator for GravityForceGenerator {

@@ -30,6 +30,14 @@ use crate::math::Scalar;
 pub const MAX_TARGETS: usize = 32;
 
 /// A force generator: the manual's `shouldApplyToBody` / `applyToBody`.
+///
+/// # If it panics
+/// A panic unwinds out of [`World::step`](crate::World::step) with the world
+/// half-stepped: the generators before it have changed the velocities of this step, the bodies after it have not, and nothing has moved yet. The world stays memory-safe and usable, but its state
+/// is not one any uninterrupted run reaches. The way back is the snapshot taken
+/// before the step: [`World::restore`](crate::World::restore) it (a game that
+/// catches panics with `std::panic::catch_unwind` should restore before it
+/// steps again).
 pub trait ForceGenerator {
     /// Whether to apply to this body this step (default: every body). An area
     /// effect checks the body's position here.
@@ -129,7 +137,44 @@ pub enum Generator<'a> {
     Custom(Hook<'a, dyn ForceGenerator + Send + 'a>),
 }
 
+/// A force generator in a world, to change its parameters
+/// ([`World::force_generator_mut`](crate::World::force_generator_mut)): the
+/// built-ins through their checked setters (a generator in a world cannot be
+/// replaced by one that was never checked), a game's own as its trait object.
+pub enum GeneratorMut<'g, 'a> {
+    /// A constant force.
+    Linear(&'g mut LinearForceGenerator),
+    /// Uniform gravity.
+    Gravity(&'g mut GravityForceGenerator),
+    /// Attraction to a point.
+    GravityToPoint(&'g mut GravityToPointForceGenerator),
+    /// A game's own generator.
+    Custom(&'g mut (dyn ForceGenerator + Send + 'a)),
+}
+
 impl<'a> Generator<'a> {
+    /// The checks of a built-in's parameters, made by
+    /// [`World::add_force_generator`](crate::World::add_force_generator) and by
+    /// `restore` (the setters call the same per-value checks).
+    pub(crate) fn validate(&self) -> Result<(), crate::Error> {
+        match self {
+            Self::Linear(g) => g.validate(),
+            Self::Gravity(g) => g.validate(),
+            Self::GravityToPoint(g) => g.validate(),
+            Self::Custom(_) => Ok(()),
+        }
+    }
+
+    /// The generator, to change its parameters through checked setters.
+    pub(crate) fn as_mut(&mut self) -> GeneratorMut<'_, 'a> {
+        match self {
+            Self::Linear(g) => GeneratorMut::Linear(g),
+            Self::Gravity(g) => GeneratorMut::Gravity(g),
+            Self::GravityToPoint(g) => GeneratorMut::GravityToPoint(g),
+            Self::Custom(g) => GeneratorMut::Custom(&mut **g),
+        }
+    }
+
     /// A game's generator, borrowed for the world's lifetime.
     pub fn borrowed(g: &'a mut (dyn ForceGenerator + Send + 'a)) -> Self {
         Self::Custom(Hook::Borrowed(g))

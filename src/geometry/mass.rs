@@ -20,8 +20,23 @@
 //!   most 1e6. For scale: a 1,000 kg, 4 m × 2 m box has 1,667 kg·m²; a 100 t,
 //!   7.7 m square is at the upper limit; a 1 g, 11 cm square at the lower one.
 //!
+//! * Both ranges hold at once, so the limits table has a row for the inertia:
+//!   a body is legal when its mass **and** its inertia are in range. For a circle
+//!   I = m·r²/2, so m·r² ∈ [2e-6, 2e6] kg·m²: a 128 m circle weighs at most
+//!   122 kg, a 1 cm circle at least 20 g, a 100 t circle is at most 4.47 m in
+//!   radius (the audit's 128 m, 1,000 kg circle and 1 cm, 1 g circle are
+//!   `OutOfRange { what: "inertia" }`). For a w × h box I = m·(w² + h²)/12.
+//!   Widening the inertia range is not safe: above 1e6 kg·m² the angular
+//!   momentum I·ω at the highest spin limit (256 rad/s) passes 2.6e8 towards
+//!   Q32.32's 2.1e9, and below 1e-6 kg·m² the inverse inertia (> 1e6) turns the
+//!   impulses of a contact at a 1 m arm into spins far past every limit.
+//! * A circle's unit inertia π·r⁴/2 is rounded to 2^-32: from 1 cm (67 steps)
+//!   it is within 1 %; below about 3.5 mm it rounds to 0 and the body is an
+//!   `inertia` error whatever its mass.
+//!
 //! Static bodies (and kinematic ones) use [`MassData::STATIC`], all zeros: an
-//! inverse mass of 0 is what makes them immovable in the solver.
+//! inverse mass of 0 is what makes them immovable in the solver. A mass or
+//! density given to such a body is ignored, whatever its value.
 
 use crate::error::Error;
 use crate::math::scalar::{self, Scalar, ZERO};

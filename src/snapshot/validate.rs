@@ -16,8 +16,9 @@ use crate::error::Error;
 use crate::force::{Generator, Targets};
 use crate::geometry::circle::MAX_CIRCLE_RADIUS;
 use crate::geometry::mass::{MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};
+use crate::limits::{check_friction, check_restitution};
 use crate::math::scalar::{self, Scalar, ZERO};
-use crate::world::{World, MAX_COORDINATE, MAX_FRICTION};
+use crate::world::{World, MAX_COORDINATE};
 
 /// Checks a free list: starting at `head`, every link names a free slot below
 /// `used`, no slot twice, and it covers exactly `used − len` slots.
@@ -68,9 +69,9 @@ fn check_props(w: &World<'_>, p: &Props) -> Result<(), Error> {
     if !ok_mass {
         return Err(invalid("mass out of range"));
     }
-    if !in_range(p.friction, ZERO, MAX_FRICTION) || !in_range(p.restitution, ZERO, scalar::ONE) {
-        return Err(invalid("material out of range"));
-    }
+    check_friction(p.friction)
+        .and(check_restitution(p.restitution))
+        .map_err(|_| invalid("material out of range"))?;
     Ok(())
 }
 
@@ -143,6 +144,9 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
         let world_custom = matches!(w.generators.get_at(i as u32), Some(Generator::Custom(_)));
         if let Some(t) = g.targets() {
             check_targets(t)?;
+        }
+        if let Some(g) = g.clone().into_generator() {
+            g.validate().map_err(|_| invalid("generator parameters out of range"))?;
         }
         if g != StoredGenerator::Free {
             live = live.saturating_add(1);

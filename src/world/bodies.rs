@@ -5,8 +5,8 @@ use crate::collision;
 use crate::error::Error;
 use crate::geometry::circle::{circle_area, circle_unit_inertia};
 use crate::geometry::{MassData, PolygonPath};
-use crate::limits::{MAX_BODY_RADIUS, MAX_FRICTION};
-use crate::math::scalar::{self, Scalar, ZERO};
+use crate::limits::{check_friction, check_restitution, MAX_BODY_RADIUS};
+use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rect, Rot, Vector2};
 
 use super::World;
@@ -84,12 +84,8 @@ impl World<'_> {
             (BodyType::Dynamic, MassSpec::Density(d)) => MassData::from_density(d, area, unit_inertia)?,
             _ => MassData::STATIC,
         };
-        if def.friction < ZERO || def.friction > MAX_FRICTION {
-            return Err(Error::OutOfRange { what: "friction" });
-        }
-        if def.restitution < ZERO || def.restitution > scalar::ONE {
-            return Err(Error::OutOfRange { what: "restitution" });
-        }
+        check_friction(def.friction)?;
+        check_restitution(def.restitution)?;
         let rotation = normalized_rotation(def.rotation)?;
         if !self.def.bounds.contains(def.position) {
             return Err(Error::OutsideBounds);

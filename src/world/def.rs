@@ -3,7 +3,9 @@
 //! and by `restore`).
 
 use crate::error::Error;
-use crate::limits::{MAX_ANGULAR_SPEED_LIMIT, MAX_COORDINATE, MAX_LINEAR_SPEED_LIMIT, MAX_SUBSTEPS};
+use crate::limits::{
+    MAX_ANGULAR_SPEED_LIMIT, MAX_ARBITER_PERSISTENCE, MAX_COORDINATE, MAX_LINEAR_SPEED_LIMIT, MAX_SUBSTEPS,
+};
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rect, Vector2};
 
@@ -32,7 +34,9 @@ pub struct WorldDef {
     /// resting bodies settle instead of jittering.
     pub restitution_threshold: Scalar,
     /// Steps an arbiter is kept after its bodies stop touching, counting the step
-    /// they separate (default 3; the manual's persistence).
+    /// they separate (default 3; the manual's persistence), 0 to
+    /// [`MAX_ARBITER_PERSISTENCE`] (256): a separated arbiter holds a slot of the
+    /// arbiter store meanwhile, and at `u32::MAX` none would ever expire.
     pub arbiter_persistence: u32,
     /// What a step does when the candidate pairs or the arbiters do not fit the
     /// contact buffers ([`Capacities::contacts`](crate::Capacities::contacts)).
@@ -97,6 +101,9 @@ impl WorldDef {
         }
         if self.restitution_threshold < ZERO || self.restitution_threshold > hundred {
             return Err(Error::OutOfRange { what: "restitution_threshold" });
+        }
+        if self.arbiter_persistence > MAX_ARBITER_PERSISTENCE {
+            return Err(Error::OutOfRange { what: "arbiter_persistence" });
         }
         Ok(())
     }

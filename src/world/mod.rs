@@ -39,7 +39,7 @@ use crate::body::{Body, BodyHandle};
 use crate::collision::{BroadPhase, Index};
 use crate::constraint::{Joint, JointHandle, JointMarker, UserConstraints};
 use crate::error::Error;
-use crate::force::{Generator, Generators};
+use crate::force::{Generator, GeneratorMut, Generators};
 use crate::geometry::PolygonPath;
 use crate::handler::{Handler, HandlerTable, PostStepQueue, MAX_POST_STEP_ROUNDS};
 use crate::index::SortAndSweepIndex;
@@ -51,6 +51,14 @@ use crate::step::{self, StepContext, StepParts};
 
 /// Called after a step for each joint that broke, with its former handle and the
 /// joint as it was.
+///
+/// # If it panics
+/// A panic unwinds out of [`World::step`](crate::World::step) with the world
+/// half-stepped: the step is complete, the joints before this one are removed, this joint is already removed, the later broken joints stay in the world marked broken, and the post-step callbacks have not run. The world stays memory-safe and usable, but its state
+/// is not one any uninterrupted run reaches. The way back is the snapshot taken
+/// before the step: [`World::restore`](crate::World::restore) it (a game that
+/// catches panics with `std::panic::catch_unwind` should restore before it
+/// steps again).
 pub type JointBreakFn = for<'w> fn(&mut World<'w>, JointHandle, Joint);
 
 /// The simulation: bodies, shared polygon paths, force generators, joints,
@@ -180,6 +188,18 @@ impl<'a> World<'a> {
     /// [`WorldDef::strict_capacity`], [`Error::CapacityFull`] when the candidate
     /// pairs or arbiters do not fit the contact buffers. On error the world is
     /// unchanged.
+    ///
+    /// # Panics
+    /// The engine itself does not panic. A game's hook that panics (a
+    /// [`ForceGenerator`](crate::ForceGenerator), a
+    /// [`CollisionHandler`](crate::CollisionHandler) method, a
+    /// [`Constraint`](crate::constraint::Constraint), a post-step callback or the
+    /// joint-break callback) unwinds out of `step` and leaves the world
+    /// half-stepped: the stages before the hook have run, those after it have not
+    /// (each hook's docs say what exactly). The world is still memory-safe, but its
+    /// state is one no uninterrupted run reaches, so its future differs from every
+    /// peer's. To recover, [`restore`](World::restore) the snapshot taken before
+    /// the step.
     pub fn step(&mut self, dt: Scalar) -> Result<StepReport, Error> {
         let ctx = StepContext::new(&self.def, dt)?;
         self.post_step.state.refused = 0;
@@ -280,9 +300,15 @@ impl<'a> World<'a> {
     /// Adds a force generator; generators run in the order they were added.
     ///
     /// # Errors
+    /// [`Error::OutOfRange`] for a built-in's parameter outside its range
+    /// (`"force"`, `"gravity"`, `"point"`, `"acceleration"`: see
+    /// [`MAX_FORCE`](crate::limits::MAX_FORCE) and
+    /// [`MAX_ACCELERATION`](crate::limits::MAX_ACCELERATION));
     /// [`Error::CapacityFull`] when the generator store is full.
     pub fn add_force_generator(&mut self, g: impl Into<Generator<'a>>) -> Result<GeneratorHandle, Error> {
-        self.generators.insert(g.into()).map_err(|_| Error::CapacityFull { what: "force generator" })
+        let g = g.into();
+        g.validate()?;
+        self.generators.insert(g).map_err(|_| Error::CapacityFull { what: "force generator" })
     }
 
     /// Removes a force generator and returns it.
@@ -293,12 +319,15 @@ impl<'a> World<'a> {
         self.generators.remove(h).ok_or(Error::StaleHandle)
     }
 
-    /// The force generator behind `h`, to change its parameters.
+    /// The force generator behind `h`, to change its parameters: a built-in
+    /// through its checked setters (e.g.
+    /// [`GravityForceGenerator::set_gravity`](crate::GravityForceGenerator::set_gravity)),
+    /// so whatever it holds is in range and the world's snapshot restores.
     ///
     /// # Errors
     /// [`Error::StaleHandle`].
-    pub fn force_generator_mut(&mut self, h: GeneratorHandle) -> Result<&mut Generator<'a>, Error> {
-        self.generators.get_mut(h).ok_or(Error::StaleHandle)
+    pub fn force_generator_mut(&mut self, h: GeneratorHandle) -> Result<GeneratorMut<'_, 'a>, Error> {
+        self.generators.get_mut(h).map(Generator::as_mut).ok_or(Error::StaleHandle)
     }
 
     // ---- collisions ----------------------------------------------------------

@@ -226,7 +226,7 @@ fn ignore_pair(_: &mut Arbiter, _: &mut CallbackContext<'_>) -> bool {
 }
 
 fn frictionless(a: &mut Arbiter, _: &mut CallbackContext<'_>) -> bool {
-    a.set_friction(Scalar::ZERO);
+    a.set_friction(Scalar::ZERO).expect("0 is a legal friction");
     true
 }
 
