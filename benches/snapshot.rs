@@ -59,22 +59,26 @@ fn settled_scene(pyramids: u32) -> Result<World<'static>, arphysics::Error> {
     Ok(w)
 }
 
-/// Median microseconds per call of `f` over `samples` samples of `reps` calls.
-fn median_us(samples: usize, reps: usize, mut f: impl FnMut()) -> f64 {
-    for _ in 0..reps {
-        f();
-    }
-    let mut t: Vec<f64> = (0..samples)
-        .map(|_| {
+/// Median microseconds per call of each of `ops`, over `samples` samples of
+/// `reps` calls. The ops take turns within each sample, so a change of load on a
+/// shared machine touches them alike.
+fn medians_us<const N: usize>(samples: usize, reps: usize, ops: &mut [&mut dyn FnMut(); N]) -> [f64; N] {
+    let mut t = vec![[0.0f64; N]; samples + 1];
+    for sample in &mut t {
+        for (k, op) in ops.iter_mut().enumerate() {
             let start = Instant::now();
             for _ in 0..reps {
-                f();
+                op();
             }
-            start.elapsed().as_secs_f64() * 1e6 / reps as f64
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[t.len() / 2]
+            sample[k] = start.elapsed().as_secs_f64() * 1e6 / reps as f64;
+        }
+    }
+    t.remove(0); // warm-up
+    core::array::from_fn(|k| {
+        let mut col: Vec<f64> = t.iter().map(|s| s[k]).collect();
+        col.sort_by(f64::total_cmp);
+        col[col.len() / 2]
+    })
 }
 
 fn fnv1a(bytes: &[u8]) -> u64 {
@@ -96,26 +100,33 @@ fn main() -> Result<(), arphysics::Error> {
         if filter.as_ref().is_some_and(|f| !name.contains(f.as_str())) {
             continue;
         }
-        let mut w = settled_scene(pyramids)?;
+        let w = settled_scene(pyramids)?;
         let mut buf = vec![0u8; w.max_snapshot_len()];
         let n = w.snapshot(&mut buf)?;
-        let (samples, reps) = if pyramids < 20 { (31, 50) } else { (21, 5) };
-        let hash = median_us(samples, reps, || {
-            black_box(w.state_hash());
-        });
-        let hashes = median_us(samples, reps, || {
-            black_box(w.state_hashes());
-        });
-        let snap = median_us(samples, reps, || {
-            black_box(w.snapshot(black_box(&mut buf)).ok());
-        });
+        let (samples, reps) = if pyramids < 20 { (41, 40) } else { (21, 4) };
         let saved = buf[..n].to_vec();
-        let restore = median_us(samples, reps, || {
-            black_box(w.restore(black_box(&saved)).ok());
-        });
-        let fnv = median_us(samples, reps, || {
-            black_box(fnv1a(black_box(&saved[..n - 8])));
-        });
+        let mut restored = settled_scene(pyramids)?;
+        let [hash, hashes, snap, restore, fnv] = medians_us(
+            samples,
+            reps,
+            &mut [
+                &mut || {
+                    black_box(w.state_hash());
+                },
+                &mut || {
+                    black_box(w.state_hashes());
+                },
+                &mut || {
+                    black_box(w.snapshot(black_box(&mut buf)).ok());
+                },
+                &mut || {
+                    black_box(restored.restore(black_box(&saved)).ok());
+                },
+                &mut || {
+                    black_box(fnv1a(black_box(&saved[..n - 8])));
+                },
+            ],
+        );
         println!(
             "{:>7} {:>7} {:>9} | {:>10.1} {:>12.1} {:>9.1} {:>9.1} | {:>12.1}",
             w.body_count(),

@@ -713,7 +713,9 @@ impl Corruption {
 /// nothing when the length in the header does not fit the buffer.
 pub fn reseal(buf: &mut [u8]) {
     use arphysics::snapshot::{HEADER, TRAILER};
-    let Some(len) = buf.get(8..16).map(|b| u64::from_le_bytes(b.try_into().unwrap_or([0; 8]))) else { return };
+    let Some(len) = buf.get(8..16).map(|b| u64::from_le_bytes(b.try_into().unwrap_or([0; 8]))) else {
+        return;
+    };
     let Ok(len) = usize::try_from(len) else { return };
     if len < HEADER + TRAILER || len > buf.len() {
         return;

@@ -114,42 +114,72 @@ impl StateHashes {
     }
 }
 
-/// Hashes the whole stream and, separately, the bytes of each part.
+/// Hashes the whole stream and, separately, the bytes of each part. Bytes are
+/// gathered in one block, which goes to the whole hash and to the current part's
+/// when it is full or the part changes.
 pub(crate) struct PartsHasher {
-    all: Hash64,
-    parts: [Hash64; 6],
-    current: Part,
+    all: twox_hash::XxHash64,
+    parts: [twox_hash::XxHash64; 6],
+    current: Option<usize>,
+    block: [u8; BLOCK],
+    len: usize,
 }
 
 impl PartsHasher {
     pub(crate) fn new() -> Self {
-        Self { all: Hash64::new(), parts: core::array::from_fn(|_| Hash64::new()), current: Part::Framing }
+        let h = || twox_hash::XxHash64::with_seed(0);
+        Self { all: h(), parts: core::array::from_fn(|_| h()), current: None, block: [0; BLOCK], len: 0 }
     }
 
-    pub(crate) fn finish(self) -> StateHashes {
-        let [world, bodies, generators, contacts, joints, allocators] = self.parts.map(Hash64::finish);
+    fn flush(&mut self) {
+        if let Some(b) = self.block.get(..self.len) {
+            self.all.write(b);
+            if let Some(h) = self.current.and_then(|i| self.parts.get_mut(i)) {
+                h.write(b);
+            }
+        }
+        self.len = 0;
+    }
+
+    pub(crate) fn finish(mut self) -> StateHashes {
+        self.flush();
+        let [world, bodies, generators, contacts, joints, allocators] = self.parts.map(|h| h.finish());
         StateHashes { all: self.all.finish(), world, bodies, generators, contacts, joints, allocators }
     }
 }
 
 impl Sink for PartsHasher {
     fn put(&mut self, bytes: &[u8]) {
-        self.all.put(bytes);
-        let i = match self.current {
-            Part::Framing => return,
-            Part::World => 0,
-            Part::Bodies => 1,
-            Part::Generators => 2,
-            Part::Contacts => 3,
-            Part::Joints => 4,
-            Part::Allocators => 5,
-        };
-        if let Some(h) = self.parts.get_mut(i) {
-            h.put(bytes);
+        if self.len.saturating_add(bytes.len()) > BLOCK {
+            self.flush();
+            if bytes.len() >= BLOCK {
+                self.all.write(bytes);
+                if let Some(h) = self.current.and_then(|i| self.parts.get_mut(i)) {
+                    h.write(bytes);
+                }
+                return;
+            }
+        }
+        let end = self.len.saturating_add(bytes.len());
+        if let Some(dst) = self.block.get_mut(self.len..end) {
+            dst.copy_from_slice(bytes);
+            self.len = end;
         }
     }
 
     fn part(&mut self, part: Part) {
-        self.current = part;
+        let next = match part {
+            Part::Framing => None,
+            Part::World => Some(0),
+            Part::Bodies => Some(1),
+            Part::Generators => Some(2),
+            Part::Contacts => Some(3),
+            Part::Joints => Some(4),
+            Part::Allocators => Some(5),
+        };
+        if next != self.current {
+            self.flush();
+            self.current = next;
+        }
     }
 }
