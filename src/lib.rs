@@ -51,8 +51,9 @@
 //! * the solver: a sub-stepped soft contact and joint solver (Box2D v3's design).
 //! * [`limits`]: the ranges that stay exact, and the stage that keeps bodies in them.
 //! * [`world`]: [`World`], which owns everything and runs [`World::step`].
-//! * [`snapshot`]: the canonical encoding, restore (validate, then apply), the
-//!   state hash and `diff`.
+//! * [`snapshot`]: the canonical encoding with its checksum trailer, restore
+//!   (verify, validate, then apply), the state hashes (whole and per part) and
+//!   `diff`.
 //!
 //! # Architecture: one concept per file
 //! ```text
@@ -80,7 +81,7 @@
 //!                       contact/ (prepare, solve, restitution)
 //!   constraint/         def joint maths user, one file per joint kind
 //!   handler.rs query.rs collision handlers and post-step callbacks; world queries
-//!   snapshot/           write cursor layout validate apply diff
+//!   snapshot/           write hash cursor layout validate apply diff
 //! ```
 //! Every stage is a function of the step's `StepContext` (`step.rs`) and the
 //! parts of the world it touches; nothing below `world/` uses [`World`] except

@@ -13,6 +13,14 @@ fn v(x: f64, y: f64) -> Vector2 {
     Vector2::new(s(x), s(y))
 }
 
+/// Recomputes a snapshot's checksum trailer (XXH64 of the bytes before it) after
+/// an edit, so that the edited fields reach `restore`'s field validation.
+fn reseal(snap: &mut [u8]) {
+    let n = snap.len();
+    let sum = twox_hash::XxHash64::oneshot(0, &snap[..n - 8]);
+    snap[n - 8..].copy_from_slice(&sum.to_le_bytes());
+}
+
 fn world() -> World<'static> {
     World::with_capacities(WorldDef::new(s(100.0), s(100.0)), Capacities::for_bodies(8)).expect("world")
 }
@@ -94,11 +102,12 @@ fn a_snapshot_whose_joint_names_a_missing_body_is_rejected_or_harmless() {
     .expect("rod");
     let mut snap = vec![0u8; w.snapshot_len()];
     w.snapshot(&mut snap).expect("snapshot");
-    // The one joint record is the last 160 bytes before the 4-byte trailer; after
+    // The one joint record is the last 160 bytes before the 8-byte trailer; after
     // its generation (4), free link (4) and live flag (1) comes body A's slot index.
-    let at = snap.len() - 4 - 160 + 9;
+    let at = snap.len() - 8 - 160 + 9;
     assert_eq!(snap[at..at + 4], a.index().to_le_bytes(), "layout of the joint record");
     snap[at..at + 4].copy_from_slice(&1_600_085_855u32.to_le_bytes());
+    reseal(&mut snap);
     if w.restore(&snap).is_ok() {
         for _ in 0..2 {
             let _ = w.step(s(1.0 / 60.0));
@@ -117,12 +126,13 @@ fn a_snapshot_whose_arbiter_names_a_missing_body_is_rejected_or_harmless() {
     assert_eq!(w.arbiters().count(), 1, "the two circles overlap");
     let mut snap = vec![0u8; w.snapshot_len()];
     w.snapshot(&mut snap).expect("snapshot");
-    // No joints: the trailer (4 bytes) follows the joint allocator (12 bytes),
+    // No joints: the trailer (8 bytes) follows the joint allocator (12 bytes),
     // which follows the one 58-byte arbiter record: body A (index, generation),
     // then body B.
-    let at = snap.len() - 4 - 12 - 58 + 8;
+    let at = snap.len() - 8 - 12 - 58 + 8;
     assert_eq!(snap[at..at + 4], 1u32.to_le_bytes(), "layout of the arbiter record");
     snap[at..at + 4].copy_from_slice(&1_000_000u32.to_le_bytes());
+    reseal(&mut snap);
     if w.restore(&snap).is_ok() {
         for _ in 0..2 {
             let _ = w.step(s(1.0 / 60.0));

@@ -93,10 +93,15 @@ fuzz_target!(|input: SnapshotInput| {
         }
     }
 
-    // Corrupted snapshots: Err and unchanged, or Ok and still sound.
-    for c in input.corruptions.iter().take(8) {
+    // Corrupted snapshots: Err and unchanged, or Ok and still sound. Each is
+    // tried as corrupted (the checksum rejects it) and resealed (its checksum
+    // recomputed, so the field validation behind the checksum is fuzzed too).
+    for (c, reseal) in input.corruptions.iter().take(8).flat_map(|c| [(c, false), (c, true)]) {
         let mut bad = snap.clone();
         c.apply(&mut bad);
+        if reseal {
+            arphysics_fuzz::reseal(&mut bad);
+        }
         let (hash, bytes) = (a.world.state_hash(), a.take_snapshot());
         match a.world.restore(&bad) {
             Err(_) => {

@@ -2,8 +2,10 @@
 //! how each record decodes (`BodyRecord`, `GeneratorRecord`, `ArbiterRecord`
 //! with its `PointRecord`s, `JointRecord`, and the properties as `Props`).
 //!
-//! [`Layout::parse`] checks sizes only: the header, the version, that every
-//! section fits, the trailer, and nothing after it. Body, property, arbiter and
+//! [`Layout::parse`] checks the framing and sizes only: the header, the
+//! version, the length (which may be shorter than the buffer), the checksum in
+//! the trailer over every byte before it — before any other field is read —
+//! and that the sections fill the length exactly. Body, property, arbiter and
 //! joint records have a fixed size, so record `i` is read on demand at a computed
 //! offset, without copying the buffer; generators vary in size and are read in
 //! order. Whether the values make sense for a world is `validate`'s job.
@@ -11,8 +13,8 @@
 use super::cursor::Cursor;
 use super::write::Props;
 use super::{
-    invalid, ARBITER_RECORD, BODY_RECORD, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD,
-    TRAILER, VERSION,
+    checksum, invalid, ARBITER_RECORD, BODY_RECORD, HEADER, JOINT_RECORD, LINK_MASK, LIVE, MAGIC,
+    OUT_OF_BOUNDS, PROPS_RECORD, TRAILER, VERSION,
 };
 use crate::body::{BodyHandle, BodyType, Shape};
 use crate::constraint::{Joint, JointDef, JointKind, MaxTorque, Motor};
@@ -34,6 +36,7 @@ pub(super) struct Alloc {
 
 /// Where everything is in a snapshot buffer. Parsing checks the sizes only.
 pub(super) struct Layout<'b> {
+    /// The snapshot's bytes before its trailer (checksum verified).
     pub(super) buf: &'b [u8],
     pub(super) step_count: u64,
     pub(super) def: WorldDef,
@@ -86,6 +89,8 @@ fn read_def(c: &mut Cursor<'_>) -> Result<WorldDef, Error> {
 }
 
 impl<'b> Layout<'b> {
+    /// Parses the snapshot at the start of `buf`; bytes after its length are
+    /// ignored.
     pub(super) fn parse(buf: &'b [u8]) -> Result<Self, Error> {
         let mut c = Cursor::at(buf, 0);
         if &c.take::<4>()? != MAGIC {
@@ -94,6 +99,18 @@ impl<'b> Layout<'b> {
         if c.u32()? != VERSION {
             return Err(invalid("another snapshot format version"));
         }
+        let len = usize::try_from(c.u64()?).map_err(|_| invalid("truncated"))?;
+        if len < HEADER + TRAILER {
+            return Err(invalid("length shorter than a snapshot"));
+        }
+        let whole = buf.get(..len).ok_or_else(|| invalid("truncated"))?;
+        let (buf, trailer) = whole.split_at(len - TRAILER);
+        let mut sum = [0u8; TRAILER];
+        sum.copy_from_slice(trailer);
+        if u64::from_le_bytes(sum) != checksum(buf) {
+            return Err(invalid("checksum mismatch (corrupted bytes)"));
+        }
+        let mut c = Cursor::at(buf, HEADER);
         let step_count = c.u64()?;
         let def = read_def(&mut c)?;
         let paths = c.u64()?;
@@ -117,11 +134,8 @@ impl<'b> Layout<'b> {
         let joints = read_alloc(&mut c)?;
         let joints_at = c.pos();
         skip_records(&mut c, joints.used, JOINT_RECORD)?;
-        if &c.take::<4>()? != TRAILER {
-            return Err(invalid("no ARPE trailer"));
-        }
         if c.pos() != buf.len() {
-            return Err(invalid("bytes after the trailer"));
+            return Err(invalid("the sections do not fill the length in the header"));
         }
         Ok(Self {
             buf,

@@ -8,21 +8,48 @@
 //! impulses, and the joints with theirs. It never depends on the target's
 //! endianness or pointer width, nor on the world's capacities. Integers are their
 //! little-endian bytes; a `Scalar` is its raw 64-bit two's-complement bits.
-//! [`World::state_hash`] is FNV-1a (64-bit) over exactly these bytes.
 //!
-//! Layout, in order: header (`ARPS`, version, step count, world settings, a
-//! checksum of the polygon paths); the table of body properties (shape, type,
-//! mass, material, groups, level, user data: 58 bytes per run of consecutive bodies
-//! that share them); one 64-byte record per body slot (generation, free-list link
-//! and flags, position, rotation, velocities); the force generators; the arbiters
-//! (58 bytes each: the pair, state, steps since separation, and per contact point
-//! its feature id and accumulated normal and friction impulses); the joints
-//! (160 bytes each); the trailer `ARPE`. Fixed-size records let `restore` check a
-//! buffer completely (free lists included) before it changes anything.
+//! Layout (format [`VERSION`] 2), in order:
+//! 1. framing, [`HEADER`] = 16 bytes: `ARPS`, the version (u32), and the
+//!    snapshot's total length in bytes (u64, trailer included);
+//! 2. the world: step count, world settings, a checksum of the polygon paths;
+//! 3. the table of body properties (shape, type, mass, material, groups, level,
+//!    user data: 58 bytes per run of consecutive bodies that share them);
+//! 4. the body allocator and one 64-byte record per body slot (generation,
+//!    free-list link or flags and properties index, position, rotation,
+//!    velocities);
+//! 5. the generator allocator and the force generators;
+//! 6. the arbiters (58 bytes each: the pair, state, steps since separation, and
+//!    per contact point its feature id and accumulated normal and friction
+//!    impulses);
+//! 7. the joint allocator and the joints (160 bytes each);
+//! 8. the trailer, [`TRAILER`] = 8 bytes: the XXH64 checksum (seed 0) of every
+//!    byte before it.
 //!
-//! A live body therefore costs 64 bytes, plus 58 for its properties unless it
-//! shares them with the body before it (a pyramid's boxes do); an arbiter 58 bytes.
+//! Fixed-size records let `restore` check a buffer completely (free lists
+//! included) before it changes anything. A live body costs 64 bytes, plus 58 for
+//! its properties unless it shares them with the body before it (a pyramid's
+//! boxes do); an arbiter 58 bytes.
 //!
+//! # Integrity, length and hashes
+//! [`World::restore`] reads the framing, then verifies the checksum over the
+//! `length − 8` bytes before the trailer, and only then parses and validates the
+//! fields (which it still does in full: a snapshot of another world, or a
+//! well-formed one with values out of range, is rejected too). Every single-bit
+//! flip and any random overwrite is rejected, and the world is left as it was.
+//! The buffer may be longer than the length in the header — a slot of a ring
+//! buffer sized once with [`World::max_snapshot_len`] — and the rest is ignored.
+//! [`World::snapshot`] encodes in one pass (it counts objects first to write the
+//! length, but encodes nothing twice).
+//!
+//! [`World::state_hash`] is XXH64 (seed 0; the specified xxHash algorithm,
+//! identical on every target, big-endian included, through the `twox-hash`
+//! crate) over exactly the bytes before the trailer, so it equals the trailer of
+//! a snapshot taken in the same state; it is computed without a buffer, at
+//! about the cost of writing a snapshot. [`World::state_hashes`] gives one such
+//! hash per part of the state ([`StateHashes`]) for locating a desync without
+//! exchanging snapshots; [`diff`] then names the object and field.
+
 //! # What is not in it
 //! Polygon paths are static data: the snapshot carries their checksum, and
 //! `restore` refuses a snapshot whose paths differ from the world's. Game hooks —
@@ -38,20 +65,29 @@
 mod apply;
 mod cursor;
 mod diff;
+mod hash;
 mod layout;
 mod validate;
 mod write;
 
 pub use diff::{diff, Difference, Object};
+pub use hash::StateHashes;
 
 use crate::error::Error;
 use crate::math::{Rect, Rot, Scalar, Vector2};
 use crate::world::World;
+use hash::{Hash64, PartsHasher};
 
-/// Snapshot format version written by this build.
-pub const VERSION: u32 = 1;
+/// Snapshot format version written by this build (2: length in the header,
+/// XXH64 checksum trailer).
+pub const VERSION: u32 = 2;
 const MAGIC: &[u8; 4] = b"ARPS";
-const TRAILER: &[u8; 4] = b"ARPE";
+/// Bytes of the framing that opens a snapshot: `ARPS`, the version (u32) and the
+/// snapshot's total length in bytes (u64), trailer included.
+pub const HEADER: usize = 16;
+/// Bytes of the trailer that closes a snapshot: the XXH64 checksum (seed 0) of
+/// every byte before it, little-endian. It equals [`World::state_hash`].
+pub const TRAILER: usize = 8;
 /// Bytes of one body record.
 pub const BODY_RECORD: usize = 64;
 /// Bytes of one body-properties record.
@@ -74,10 +110,31 @@ fn invalid(what: &'static str) -> Error {
     Error::InvalidSnapshot { what }
 }
 
+/// The checksum of a snapshot's bytes before its trailer: XXH64 with seed 0.
+pub(crate) fn checksum(bytes: &[u8]) -> u64 {
+    twox_hash::XxHash64::oneshot(0, bytes)
+}
+
+/// Which per-part hash ([`StateHashes`]) the bytes written next belong to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Part {
+    /// Magic, version and length: in the whole hash only.
+    Framing,
+    World,
+    Bodies,
+    Generators,
+    Contacts,
+    Joints,
+    Allocators,
+}
+
 /// Receives the canonical byte stream (a hasher, a counter, or a buffer).
 pub(crate) trait Sink {
     /// Appends bytes.
     fn put(&mut self, bytes: &[u8]);
+
+    /// The bytes that follow belong to `part` (only the per-part hasher cares).
+    fn part(&mut self, _part: Part) {}
 
     fn u8(&mut self, v: u8) {
         self.put(&[v]);
@@ -110,43 +167,13 @@ pub(crate) trait Sink {
         self.vector(r.max);
     }
     fn zeros(&mut self, n: usize) {
-        for _ in 0..n {
-            self.u8(0);
+        const Z: [u8; 64] = [0; 64];
+        let mut left = n;
+        while left > 0 {
+            let k = left.min(Z.len());
+            self.put(&Z[..k]);
+            left -= k;
         }
-    }
-}
-
-/// FNV-1a, 64-bit: simple, identical on every target, enough to tell two states
-/// apart for a desync check.
-pub(crate) struct StateHasher(u64);
-
-impl StateHasher {
-    const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
-    const PRIME: u64 = 0x0000_0100_0000_01b3;
-
-    pub(crate) fn new() -> Self {
-        Self(Self::OFFSET)
-    }
-
-    pub(crate) fn finish(&self) -> u64 {
-        self.0
-    }
-}
-
-impl Sink for StateHasher {
-    fn put(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(Self::PRIME);
-        }
-    }
-}
-
-/// Counts bytes.
-struct Counter(usize);
-
-impl Sink for Counter {
-    fn put(&mut self, bytes: &[u8]) {
-        self.0 = self.0.saturating_add(bytes.len());
     }
 }
 
@@ -168,24 +195,54 @@ impl Sink for Writer<'_> {
 
 impl World<'_> {
     /// A 64-bit hash of the canonical encoding of the state (see
-    /// [`crate::snapshot`]): equal on every target and build for equal states.
-    /// Compare it between peers every frame to detect a desync.
+    /// [`crate::snapshot`]): XXH64 (seed 0) of the bytes [`World::snapshot`]
+    /// would write before its trailer, so it equals the trailer of a snapshot
+    /// taken now. Equal on every target and build for equal states; computed
+    /// without a buffer, in about the time a snapshot takes. Compare it between
+    /// peers every frame to detect a desync, and [`World::state_hashes`] to see
+    /// which part diverged.
     #[must_use]
     pub fn state_hash(&self) -> u64 {
-        let mut h = StateHasher::new();
-        write::write(self, &mut h);
+        let plan = write::Plan::of(self);
+        let mut h = Hash64::new();
+        write::write(self, &plan, &mut h);
         h.finish()
     }
 
-    /// Bytes [`World::snapshot`] needs right now.
+    /// One hash per part of the state (world settings and step count, bodies,
+    /// generators, contacts, joints, allocators), over the same encoding as
+    /// [`World::state_hash`] (which is [`StateHashes::all`]). Peers that disagree
+    /// on the state hash can exchange these few words to learn which part
+    /// diverged before they exchange whole snapshots for [`diff`].
     #[must_use]
-    pub fn snapshot_len(&self) -> usize {
-        let mut c = Counter(0);
-        write::write(self, &mut c);
-        c.0
+    pub fn state_hashes(&self) -> StateHashes {
+        let plan = write::Plan::of(self);
+        let mut h = PartsHasher::new();
+        write::write(self, &plan, &mut h);
+        h.finish()
     }
 
-    /// Writes the state into `buf`; returns the bytes written. Allocates nothing.
+    /// Bytes [`World::snapshot`] writes right now (counted from the number of
+    /// objects, without encoding anything).
+    #[must_use]
+    pub fn snapshot_len(&self) -> usize {
+        write::Plan::of(self).len
+    }
+
+    /// The longest snapshot this world can ever write: every body slot used, each
+    /// body with its own properties, every generator slot holding a generator
+    /// with the most targets, the contact store full and every joint slot used.
+    /// It depends on the capacities only, so a game can allocate its rollback
+    /// ring buffer once (`frames × max_snapshot_len()`); [`World::restore`]
+    /// accepts the longer buffer.
+    #[must_use]
+    pub fn max_snapshot_len(&self) -> usize {
+        write::max_len(self)
+    }
+
+    /// Writes the state into `buf` in one pass and returns the bytes written
+    /// ([`World::snapshot_len`]); bytes of `buf` after those are left alone.
+    /// Allocates nothing.
     ///
     /// Nothing is pending between steps: the post-step queue is empty whenever
     /// `step` or `remove_body` has returned, so the snapshot misses no queued
@@ -194,11 +251,14 @@ impl World<'_> {
     /// # Errors
     /// [`Error::BufferTooSmall`] with the size needed; `buf` is then untouched.
     pub fn snapshot(&self, buf: &mut [u8]) -> Result<usize, Error> {
-        let needed = self.snapshot_len();
+        let plan = write::Plan::of(self);
+        let needed = plan.len;
         let Some(dst) = buf.get_mut(..needed) else { return Err(Error::BufferTooSmall { needed }) };
-        let mut w = Writer { buf: dst, pos: 0 };
-        write::write(self, &mut w);
-        Ok(w.pos)
+        let (body, trailer) = dst.split_at_mut(needed.saturating_sub(TRAILER));
+        let mut w = Writer { buf: body, pos: 0 };
+        write::write(self, &plan, &mut w);
+        trailer.copy_from_slice(&checksum(body).to_le_bytes());
+        Ok(needed)
     }
 
     /// Restores a state written by [`World::snapshot`]. Bodies, arbiters, joints
@@ -207,7 +267,12 @@ impl World<'_> {
     /// is no queued post-step callback to lose (the queue is empty between
     /// steps); [`World::stats`] is left as it is.
     ///
-    /// The whole buffer is checked before anything changes.
+    /// `buf` may be longer than the snapshot it holds (a ring-buffer slot of
+    /// [`World::max_snapshot_len`] bytes): the length in the header says where it
+    /// ends, and whatever follows is ignored. Before anything else is read, the
+    /// checksum in the trailer is verified, so any corrupted byte (every
+    /// single-bit flip, for instance) is rejected; then every field is validated
+    /// against the world, and only then is anything changed.
     ///
     /// # Errors
     /// [`Error::InvalidSnapshot`] for truncated, corrupted or foreign bytes;
@@ -227,13 +292,22 @@ mod tests {
     use super::*;
 
     #[test]
-    fn fnv1a_matches_the_published_test_vectors() {
-        let mut h = StateHasher::new();
-        assert_eq!(h.finish(), 0xcbf2_9ce4_8422_2325);
-        h.put(b"a");
-        assert_eq!(h.finish(), 0xaf63_dc4c_8601_ec8c);
-        let mut h = StateHasher::new();
-        h.put(b"foobar");
-        assert_eq!(h.finish(), 0x8594_4171_f739_67e8);
+    fn the_checksum_is_xxh64_with_the_published_test_vectors() {
+        // From the xxHash reference implementation (XXH64, seed 0).
+        assert_eq!(checksum(b""), 0xef46_db37_51d8_e999);
+        assert_eq!(checksum(b"a"), 0xd24e_c4f1_a98c_6e5b);
+        assert_eq!(checksum(b"abc"), 0x44bc_2cf5_ad77_0999);
+    }
+
+    #[test]
+    fn the_block_hasher_equals_the_one_shot_hash_whatever_the_pieces() {
+        let data: [u8; 1000] = core::array::from_fn(|i| (i * 31 % 251) as u8);
+        for piece in [1, 3, 8, 31, 64, 255, 256, 257, 999] {
+            let mut h = Hash64::new();
+            for chunk in data.chunks(piece) {
+                h.put(chunk);
+            }
+            assert_eq!(h.finish(), checksum(&data), "pieces of {piece}");
+        }
     }
 }

@@ -1,10 +1,14 @@
 //! Writing the canonical encoding (see the module docs for the layout).
 
-use super::{Sink, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, NO_LINK, OUT_OF_BOUNDS, TRAILER, VERSION};
+use super::hash::Hash64;
+use super::{
+    Part, Sink, ARBITER_RECORD, BODY_RECORD, HEADER, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, NO_LINK,
+    OUT_OF_BOUNDS, PROPS_RECORD, TRAILER, VERSION,
+};
 use crate::arena::NO_SLOT;
 use crate::body::{Body, BodyType, Shape};
 use crate::constraint::{Joint, JointKind, MaxTorque};
-use crate::force::{Generator, Targets};
+use crate::force::{Generator, Targets, MAX_TARGETS};
 use crate::geometry::PolygonPath;
 use crate::math::Scalar;
 use crate::world::{World, WorldDef};
@@ -39,26 +43,115 @@ impl Props {
     }
 }
 
-pub(super) fn write(w: &World<'_>, s: &mut impl Sink) {
+/// Bytes of the world part: step count, settings (88 bytes), paths checksum.
+const WORLD_BYTES: usize = 8 + 88 + 8;
+/// Bytes of an allocator state (slots used, free head, live count).
+const ALLOC_BYTES: usize = 12;
+/// Bytes of a generator slot holding the largest generator: generation, link,
+/// kind, point and acceleration, then a target list of `MAX_TARGETS` handles.
+const MAX_GENERATOR_BYTES: usize = 9 + 24 + 2 + 8 * MAX_TARGETS;
+
+/// What must be known before the first byte is written: the length (in the
+/// header) and the number of property records.
+pub(super) struct Plan {
+    /// Total bytes, trailer included.
+    pub(super) len: usize,
+    /// Entries of the properties table.
+    props: u32,
+}
+
+impl Plan {
+    /// Counts; encodes nothing. Must agree with [`write`] byte for byte (a test
+    /// compares it with a counting sink).
+    pub(super) fn of(w: &World<'_>) -> Self {
+        let mut props = 0u32;
+        let mut last: Option<Props> = None;
+        for (_, b) in w.bodies.iter() {
+            let p = Props::of(b);
+            if last != Some(p) {
+                props = props.saturating_add(1);
+                last = Some(p);
+            }
+        }
+        let generators = (0..w.generators.allocator_state().0)
+            .map(|i| generator_bytes(w.generators.get_at(i)))
+            .fold(0usize, usize::saturating_add);
+        let len = sections_len(
+            props as usize,
+            w.bodies.allocator_state().0 as usize,
+            generators,
+            w.arbiters.live().len(),
+            w.joints.allocator_state().0 as usize,
+        );
+        Self { len, props }
+    }
+}
+
+/// Bytes of a snapshot with these counts.
+fn sections_len(
+    props: usize,
+    body_slots: usize,
+    generator_bytes: usize,
+    arbiters: usize,
+    joints: usize,
+) -> usize {
+    let records = [
+        (props, PROPS_RECORD),
+        (body_slots, BODY_RECORD),
+        (arbiters, ARBITER_RECORD),
+        (joints, JOINT_RECORD),
+    ];
+    records.iter().fold(
+        // header, world, props count, 3 allocators, arbiter count, generators, trailer
+        HEADER + WORLD_BYTES + 4 + 3 * ALLOC_BYTES + 4 + TRAILER + generator_bytes,
+        |acc, &(n, size)| acc.saturating_add(n.saturating_mul(size)),
+    )
+}
+
+/// The longest snapshot a world with these capacities can write.
+pub(super) fn max_len(w: &World<'_>) -> usize {
+    let bodies = w.bodies.capacity();
+    sections_len(
+        bodies,
+        bodies,
+        w.generators.capacity().saturating_mul(MAX_GENERATOR_BYTES),
+        w.arbiters.capacity(),
+        w.joints.capacity(),
+    )
+}
+
+/// Bytes of one generator slot.
+fn generator_bytes(g: Option<&Generator<'_>>) -> usize {
+    let targets = |t: &Targets| match t {
+        Targets::All => 1,
+        Targets::Level(_) => 5,
+        Targets::Bodies(v) => 2 + 8 * v.len(),
+    };
+    9 + match g {
+        None | Some(Generator::Custom(_)) => 0,
+        Some(Generator::Linear(g)) => 16 + targets(&g.targets),
+        Some(Generator::Gravity(g)) => 16 + targets(&g.targets),
+        Some(Generator::GravityToPoint(g)) => 24 + targets(&g.targets),
+    }
+}
+
+/// Writes everything but the trailer (the caller hashes or checksums what was
+/// written). `plan` is [`Plan::of`] the same world.
+pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
+    s.part(Part::Framing);
     s.put(MAGIC);
     s.u32(VERSION);
+    s.u64(plan.len as u64);
+    s.part(Part::World);
     s.u64(w.step_count);
     write_def(s, &w.def);
     s.u64(paths_checksum(w));
 
     // The properties table: a new entry whenever a live body's properties differ
     // from the previous live body's.
-    let mut count = 0u32;
+    s.part(Part::Bodies);
+    s.u32(plan.props);
     let mut last: Option<Props> = None;
-    for (_, b) in w.bodies.iter() {
-        let p = Props::of(b);
-        if last != Some(p) {
-            count = count.saturating_add(1);
-            last = Some(p);
-        }
-    }
-    s.u32(count);
-    last = None;
     for (_, b) in w.bodies.iter() {
         let p = Props::of(b);
         if last != Some(p) {
@@ -67,6 +160,9 @@ pub(super) fn write(w: &World<'_>, s: &mut impl Sink) {
         }
     }
 
+    // Body slots: generation and free-list link are the allocator's, the rest
+    // the body's.
+    s.part(Part::Allocators);
     let (used, free_head, len) = w.bodies.allocator_state();
     s.u32(used);
     s.u32(link(free_head));
@@ -75,9 +171,11 @@ pub(super) fn write(w: &World<'_>, s: &mut impl Sink) {
     last = None;
     for i in 0..used {
         let (generation, next_free) = w.bodies.slot_meta(i).unwrap_or((0, NO_SLOT));
+        s.part(Part::Allocators);
         s.u32(generation);
         match w.bodies.get_at(i) {
             Some(b) => {
+                s.part(Part::Bodies);
                 let p = Props::of(b);
                 if last.is_some() && last != Some(p) {
                     index = index.saturating_add(1);
@@ -97,14 +195,17 @@ pub(super) fn write(w: &World<'_>, s: &mut impl Sink) {
         }
     }
 
+    s.part(Part::Allocators);
     let (used, free_head, len) = w.generators.allocator_state();
     s.u32(used);
     s.u32(link(free_head));
     s.u32(len);
     for i in 0..used {
         let (generation, next_free) = w.generators.slot_meta(i).unwrap_or((0, NO_SLOT));
+        s.part(Part::Allocators);
         s.u32(generation);
         s.u32(link(next_free));
+        s.part(Part::Generators);
         match w.generators.get_at(i) {
             None => s.u8(0),
             Some(Generator::Linear(g)) => {
@@ -127,6 +228,7 @@ pub(super) fn write(w: &World<'_>, s: &mut impl Sink) {
         }
     }
 
+    s.part(Part::Contacts);
     let live = w.arbiters.live();
     s.u32(live.len() as u32);
     for a in live {
@@ -149,6 +251,7 @@ pub(super) fn write(w: &World<'_>, s: &mut impl Sink) {
         }
     }
 
+    s.part(Part::Allocators);
     let (used, free_head, len) = w.joints.allocator_state();
     s.u32(used);
     s.u32(link(free_head));
@@ -165,9 +268,12 @@ pub(super) fn write(w: &World<'_>, s: &mut impl Sink) {
             }
             None => rec.u8(0),
         }
-        s.put(&rec.bytes);
+        let (slot, joint) = rec.bytes.split_at(8);
+        s.part(Part::Allocators);
+        s.put(slot);
+        s.part(Part::Joints);
+        s.put(joint);
     }
-    s.put(TRAILER);
 }
 
 /// A free-list link in the 30-bit form.
@@ -325,10 +431,10 @@ fn write_joint(s: &mut impl Sink, j: &Joint) {
     }
 }
 
-/// FNV-1a over the polygon paths (allocator state and every path's data), which
+/// XXH64 over the polygon paths (allocator state and every path's data), which
 /// the snapshot carries instead of the paths themselves.
 pub(super) fn paths_checksum(w: &World<'_>) -> u64 {
-    let mut h = super::StateHasher::new();
+    let mut h = Hash64::new();
     let (used, free_head, len) = w.paths.allocator_state();
     h.u32(used);
     h.u32(free_head);
