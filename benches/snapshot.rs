@@ -29,7 +29,8 @@ fn settled_scene(pyramids: u32) -> Result<World<'static>, arphysics::Error> {
     let bodies = pyramids as usize * 64 + 16;
     let half = f64::from(pyramids) * 7.0 + 20.0;
     let bounds = Rect::from_corners(v(-half - 50.0, -100.0), v(half + 50.0, 400.0));
-    let caps = Capacities { bodies, paths: 8, contacts: bodies * 4, joints: 0 };
+    let caps =
+        Capacities { bodies, paths: 8, contacts: bodies * 4, joints: 0, ..Capacities::for_bodies(bodies) };
     let mut w = World::with_capacities(WorldDef::with_bounds(bounds), caps)?;
     w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0)))?;
     let piece = w.add_path(PolygonPath::rectangle(s(100.0), s(2.0))?)?;

@@ -211,7 +211,7 @@ fn a_snapshot_restores_from_a_longer_zero_or_garbage_padded_buffer() {
 
 #[test]
 fn max_snapshot_len_bounds_a_world_filled_to_capacity() {
-    let caps = Capacities { bodies: 40, paths: 2, contacts: 30, joints: 12 };
+    let caps = Capacities { bodies: 40, paths: 2, contacts: 30, joints: 12, ..Capacities::for_bodies(40) };
     let bounds = Rect::from_corners(v(-200.0, -20.0), v(200.0, 200.0));
     let mut w = World::with_capacities(WorldDef::with_bounds(bounds), caps).expect("world");
     let max = w.max_snapshot_len();

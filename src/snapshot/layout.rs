@@ -83,7 +83,8 @@ fn read_def(c: &mut Cursor<'_>) -> Result<WorldDef, Error> {
         contact_push_speed,
         restitution_threshold,
         arbiter_persistence,
-        // Not in this format version's encoding; `validate` takes the world's.
+        // Like the capacities, a property of the world that restores, not of
+        // the state: not encoded; `validate` compares the rest.
         strict_capacity: false,
     })
 }

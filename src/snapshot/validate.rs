@@ -100,7 +100,8 @@ fn check_targets(_: &Targets) -> Result<(), Error> {
 
 /// Everything `apply` relies on, checked without changing the world.
 pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
-    // `strict_capacity` is not encoded yet: compare the rest.
+    // `strict_capacity`, like the capacities, belongs to the restoring world,
+    // not to the state: it is not encoded; compare the rest.
     if (crate::WorldDef { strict_capacity: w.def.strict_capacity, ..l.def }) != w.def {
         return Err(Error::SnapshotMismatch { what: "world definition" });
     }

@@ -43,7 +43,9 @@ pub struct WorldDef {
     /// `false` (the default): it completes, keeping the lowest pair keys, and
     /// counts what it left out in the
     /// [`StepReport`](crate::StepReport) (`pairs_dropped`, `arbiters_dropped`).
-    /// `true`: it fails with [`Error::CapacityFull`] and changes nothing.
+    /// `true`: it fails with [`Error::CapacityFull`] and changes nothing. Like the
+    /// capacities, this belongs to the world, not to its state: snapshots do not
+    /// record it and a restore keeps the restoring world's setting.
     pub strict_capacity: bool,
 }
 
