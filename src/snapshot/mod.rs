@@ -206,7 +206,8 @@ impl World<'_> {
     /// or paths, more objects than this world's capacities, custom generators in
     /// other slots). On error the world is unchanged.
     pub fn restore(&mut self, buf: &[u8]) -> Result<(), Error> {
-        let layout = layout::Layout::parse(buf)?;
+        // The snapshot holds no world tag: its handles become this world's.
+        let layout = layout::Layout::parse(buf)?.for_world(self.bodies.tag());
         validate::validate(self, &layout)?;
         apply::apply(self, &layout);
         Ok(())

@@ -1,5 +1,6 @@
 //! The body and polygon-path API of [`World`]: create, read, move, remove.
 
+use crate::arena::Handle;
 use crate::body::{compute_aabb, Body, BodyDef, BodyHandle, BodyType, MassSpec, PathHandle, Shape};
 use crate::collision;
 use crate::error::Error;
@@ -133,6 +134,14 @@ impl World<'_> {
     /// for each pair that had begun (the body is still readable then), in pair
     /// order, and the arbiters are dropped. Safe to call from a post-step callback.
     ///
+    /// The built-in joints attached to the body are removed with it (they are
+    /// state: a [`restore`](World::restore) to a snapshot taken before brings
+    /// them back). The game constraints attached to it
+    /// ([`add_constraint`](World::add_constraint)) stay registered but go
+    /// *dormant*: they are not solved while the body is gone, and they come back
+    /// to life if a restore brings that very body (same handle) back. Only
+    /// [`remove_constraint`](World::remove_constraint) removes them.
+    ///
     /// # Errors
     /// [`Error::StaleHandle`].
     pub fn remove_body(&mut self, h: BodyHandle) -> Result<Body, Error> {
@@ -141,12 +150,12 @@ impl World<'_> {
         }
         let World { bodies, arbiters, handlers, post_step, .. } = self;
         collision::end_arbiters_of(h.index(), bodies, arbiters, handlers, post_step);
-        self.remove_constraints_of(h);
+        self.remove_joints_of(h);
         self.bodies.remove(h).ok_or(Error::StaleHandle)
     }
 
-    /// Removes every joint and game constraint attached to `h`.
-    fn remove_constraints_of(&mut self, h: BodyHandle) {
+    /// Removes every built-in joint attached to `h`.
+    fn remove_joints_of(&mut self, h: BodyHandle) {
         for i in 0..self.joints.slots_used() {
             let attached =
                 self.joints.get_at(i).is_some_and(|j| j.def.body_a == h || j.def.body_b == Some(h));
@@ -154,12 +163,16 @@ impl World<'_> {
                 self.joints.remove(jh);
             }
         }
-        for i in 0..self.constraints.slots_used() {
-            let attached = self.constraints.get_at(i).is_some_and(|c| c.body_a == h || c.body_b == Some(h));
-            if let (true, Some(ch)) = (attached, self.constraints.handle_at(i)) {
-                self.constraints.remove(ch);
-            }
-        }
+    }
+
+    /// The handle of slot `index` at `generation` in this world: the inverse of
+    /// [`Handle::index`] and [`Handle::generation`], for handles that travel
+    /// without their world tag (a network message from a peer, whose world
+    /// has another tag but the same slots and generations). It resolves only if
+    /// that object is alive, like any handle.
+    #[must_use]
+    pub fn handle_from_parts<T>(&self, index: u32, generation: u32) -> Handle<T> {
+        Handle::tagged(index, generation, self.bodies.tag())
     }
 
     /// The body behind `h`.

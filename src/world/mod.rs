@@ -51,6 +51,15 @@ use crate::step::{self, StepContext, StepParts};
 /// joint as it was.
 pub type JointBreakFn = for<'w> fn(&mut World<'w>, JointHandle, Joint);
 
+/// Every handle packs into 64 bits (see [`crate::arena`]): a store of more than
+/// [`MAX_SLOTS`](crate::arena::MAX_SLOTS) slots is an error.
+fn check_slot_capacities(bodies: usize, paths: usize, joints: usize) -> Result<(), Error> {
+    if bodies.max(paths).max(joints) > crate::arena::MAX_SLOTS {
+        return Err(Error::OutOfRange { what: "capacity (at most 1,048,575 slots a store)" });
+    }
+    Ok(())
+}
+
 /// The simulation: bodies, shared polygon paths, force generators, joints,
 /// collision hooks, and `step`.
 pub struct World<'a> {
@@ -70,19 +79,24 @@ pub struct World<'a> {
 }
 
 impl<'a> World<'a> {
-    /// A world on the given storage.
+    /// A world on the given storage. The world takes a new tag (see
+    /// [`arena`](crate::arena)), which every handle it gives out carries, so
+    /// handles of another world are [`Error::StaleHandle`] here.
     ///
     /// # Errors
     /// [`Error::OutOfRange`] for bounds that are empty or exceed
-    /// ±[`MAX_COORDINATE`], or settings outside their ranges.
+    /// ±[`MAX_COORDINATE`], settings outside their ranges, or more than
+    /// [`MAX_SLOTS`](crate::arena::MAX_SLOTS) body, path or joint slots.
     pub fn new(def: WorldDef, storage: Storage<'a>) -> Result<Self, Error> {
         def.validate()?;
         let s = storage;
+        check_slot_capacities(s.bodies.len(), s.paths.len(), s.joints.len())?;
+        let tag = crate::arena::next_world_tag();
         Ok(Self {
             def,
-            bodies: Arena::new(s.bodies),
-            paths: Arena::new(s.paths),
-            generators: Arena::inline(),
+            bodies: Arena::new(s.bodies).with_tag(tag),
+            paths: Arena::new(s.paths).with_tag(tag),
+            generators: Arena::inline().with_tag(tag),
             broad_phase: BroadPhase {
                 index: Index::default(),
                 auto_sweep: SortAndSweepIndex::new(s.sweep_order),
@@ -94,9 +108,9 @@ impl<'a> World<'a> {
             arbiters: ArbiterStore::new(s.arbiters, s.arbiters_next),
             handlers: HandlerTable::new(),
             post_step: PostStepQueue::new(),
-            joints: Arena::new(s.joints),
+            joints: Arena::new(s.joints).with_tag(tag),
             solver: Solver { bodies: s.solver_bodies, constraints: s.contact_constraints, count: 0 },
-            constraints: Arena::inline(),
+            constraints: Arena::inline().with_tag(tag),
             break_callback: None,
             step_count: 0,
         })
@@ -108,6 +122,8 @@ impl<'a> World<'a> {
     /// As [`World::new`].
     #[cfg(feature = "alloc")]
     pub fn with_capacities(def: WorldDef, capacities: Capacities) -> Result<Self, Error> {
+        // Checked before allocating, as `new` checks it after.
+        check_slot_capacities(capacities.bodies, capacities.paths, capacities.joints)?;
         Self::new(def, Storage::with_capacities(capacities))
     }
 
