@@ -110,21 +110,22 @@ pub(crate) fn next_world_tag() -> u16 {
 ///
 /// [`Error::StaleHandle`]: crate::Error::StaleHandle
 pub struct Handle<T> {
-    index: u32,
+    /// The world tag in the high 12 bits, the slot index in the low 20 (so a
+    /// handle stays 8 bytes, as it was before it carried its world).
+    place: u32,
     generation: u32,
-    tag: u16,
     marker: PhantomData<fn() -> T>,
 }
 
 impl<T> Handle<T> {
     /// The null handle: resolves to nothing in every arena; packs to `0`.
-    pub const NULL: Self = Self { index: 0, generation: 0, tag: 0, marker: PhantomData };
+    pub const NULL: Self = Self { place: 0, generation: 0, marker: PhantomData };
 
     /// The slot index (for canonical ordering and encoding).
     #[inline]
     #[must_use]
     pub const fn index(self) -> u32 {
-        self.index
+        self.place & MAX_INDEX
     }
 
     /// The generation of the slot when this handle was issued.
@@ -140,7 +141,7 @@ impl<T> Handle<T> {
     #[inline]
     #[must_use]
     pub const fn world_tag(self) -> u16 {
-        self.tag
+        (self.place >> HANDLE_INDEX_BITS) as u16
     }
 
     /// Rebuilds an untagged handle from its parts. It belongs to no world, so no
@@ -159,7 +160,8 @@ impl<T> Handle<T> {
     #[inline]
     pub(crate) const fn tagged(index: u32, generation: u32, tag: u16) -> Self {
         let index = if index > MAX_INDEX { MAX_INDEX } else { index };
-        Self { index, generation, tag: tag & TAG_MASK, marker: PhantomData }
+        let tag = (tag & TAG_MASK) as u32;
+        Self { place: (tag << HANDLE_INDEX_BITS) | index, generation, marker: PhantomData }
     }
 
     /// Packs the handle into one `u64`, for a post-step callback key or a user-data
@@ -176,7 +178,8 @@ impl<T> Handle<T> {
     #[inline]
     #[must_use]
     pub const fn to_bits(self) -> u64 {
-        ((self.index as u64) << (32 + HANDLE_TAG_BITS)) | ((self.tag as u64) << 32) | self.generation as u64
+        let (index, tag) = (self.index() as u64, self.world_tag() as u64);
+        (index << (32 + HANDLE_TAG_BITS)) | (tag << 32) | self.generation as u64
     }
 
     /// Unpacks a handle packed by [`Handle::to_bits`] (index in the high 20 bits,
@@ -215,7 +218,7 @@ impl<T> Clone for Handle<T> {
 impl<T> Copy for Handle<T> {}
 impl<T> PartialEq for Handle<T> {
     fn eq(&self, o: &Self) -> bool {
-        self.to_bits() == o.to_bits()
+        self.place == o.place && self.generation == o.generation
     }
 }
 impl<T> Eq for Handle<T> {}
@@ -243,7 +246,7 @@ impl<T> Default for Handle<T> {
 }
 impl<T> fmt::Debug for Handle<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "Handle({}v{}w{})", self.index, self.generation, self.tag)
+        write!(f, "Handle({}v{}w{})", self.index(), self.generation, self.world_tag())
     }
 }
 
@@ -353,10 +356,10 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
     /// (the generation is not checked).
     #[inline]
     fn slot_of(&self, h: Handle<K>) -> Option<&Slot<T>> {
-        if h.tag != self.tag {
+        if h.world_tag() != self.tag {
             return None;
         }
-        self.slots.slots().get(h.index as usize)
+        self.slots.slots().get(h.index() as usize)
     }
 
     /// Maximum number of objects.
@@ -426,10 +429,10 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
     /// `u32::MAX` is retired instead (generation 0, never reused), so no
     /// generation is ever issued twice for one slot.
     pub fn remove(&mut self, h: Handle<K>) -> Option<T> {
-        if h.tag != self.tag {
+        if h.world_tag() != self.tag {
             return None;
         }
-        let slot = self.slots.slots_mut().get_mut(h.index as usize)?;
+        let slot = self.slots.slots_mut().get_mut(h.index() as usize)?;
         if slot.generation != h.generation || slot.value.is_none() {
             return None;
         }
@@ -439,7 +442,7 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
             Some(next) => {
                 slot.generation = next;
                 slot.next_free = self.free_head;
-                self.free_head = h.index;
+                self.free_head = h.index();
             }
             None => {
                 slot.generation = 0;
@@ -470,10 +473,10 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
     /// The object behind `h`, mutably, or `None` for a stale or null handle.
     #[inline]
     pub fn get_mut(&mut self, h: Handle<K>) -> Option<&mut T> {
-        if h.tag != self.tag {
+        if h.world_tag() != self.tag {
             return None;
         }
-        let slot = self.slots.slots_mut().get_mut(h.index as usize)?;
+        let slot = self.slots.slots_mut().get_mut(h.index() as usize)?;
         if slot.generation == h.generation {
             slot.value.as_mut()
         } else {
@@ -537,7 +540,7 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
         if !live(a) || !live(b) {
             return None;
         }
-        self.get2_at_mut(a.index, b.index)
+        self.get2_at_mut(a.index(), b.index())
     }
 
     /// Number of slots ever used: every live object has a slot index below this.
@@ -641,6 +644,12 @@ mod tests {
         assert_eq!(a.remove(old), None);
         assert_eq!(a.get(new), Some(&20));
         assert_eq!(a.get(Handle::NULL), None);
+    }
+
+    #[test]
+    fn a_handle_is_as_small_as_an_untagged_one() {
+        assert_eq!(core::mem::size_of::<Handle<u8>>(), 8);
+        assert_eq!(core::mem::size_of::<Option<Handle<u8>>>(), 12);
     }
 
     #[test]

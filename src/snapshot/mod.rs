@@ -200,6 +200,17 @@ impl World<'_> {
     ///
     /// The whole buffer is checked before anything changes.
     ///
+    /// A snapshot holds slot indices and generations, not the world tag
+    /// handles carry (see [`crate::arena`]): a world of the same settings and
+    /// capacities can restore another world's snapshot, and the handles it then
+    /// gives out (and those in its arbiters, joints and generators) are its own.
+    ///
+    /// Game constraints ([`World::add_constraint`]) are not in the snapshot and
+    /// stay registered through a restore; each is active exactly when its bodies,
+    /// by handle, are in the restored state: one whose body was removed after the
+    /// snapshot comes back to life with it, one whose body did not exist yet is
+    /// dormant. Built-in joints are in the snapshot and come back with it.
+    ///
     /// # Errors
     /// [`Error::InvalidSnapshot`] for truncated, corrupted or foreign bytes;
     /// [`Error::SnapshotMismatch`] for a snapshot of another world (other settings
