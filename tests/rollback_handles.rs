@@ -22,6 +22,11 @@ fn snapshot(w: &World<'_>) -> Vec<u8> {
 }
 const DT: f64 = 1.0 / 60.0;
 
+/// A 0.5 m ball at (`x`, 50).
+fn ball(w: &mut World<'_>, x: f64) -> BodyHandle {
+    w.add_body(BodyDef::circle(s(0.5)).position(v(x, 50.0))).unwrap()
+}
+
 // ---- item 5: handles from another world -------------------------------------
 
 /// Error::StaleHandle: "the handle refers to an object that was removed (or
@@ -174,11 +179,11 @@ impl Constraint for Kick {
 #[test]
 fn game_constraint_acts_on_another_body_after_restore() {
     let mut w = world();
-    let anchor = w.add_body(BodyDef::circle(s(0.5)).position(v(10.0, 50.0))).unwrap();
-    let c = w.add_body(BodyDef::circle(s(0.5)).position(v(30.0, 50.0))).unwrap();
+    let anchor = ball(&mut w, 10.0);
+    let c = ball(&mut w, 30.0);
     let snap = snapshot(&w);
     w.remove_body(c).unwrap();
-    let b = w.add_body(BodyDef::circle(s(0.5)).position(v(60.0, 50.0))).unwrap(); // same slot, new generation
+    let b = ball(&mut w, 60.0); // same slot, new generation
     assert_eq!(b.index(), c.index());
     let k = w.add_constraint(anchor, Some(b), Hook::Boxed(Box::new(Kick))).unwrap();
     w.restore(&snap).unwrap(); // B no longer exists, C is back
@@ -193,11 +198,11 @@ fn game_constraint_acts_on_another_body_after_restore() {
 #[test]
 fn a_dormant_constraint_ignores_the_body_that_took_its_slot() {
     let mut w = world();
-    let anchor = w.add_body(BodyDef::circle(s(0.5)).position(v(10.0, 50.0))).unwrap();
-    let b = w.add_body(BodyDef::circle(s(0.5)).position(v(30.0, 50.0))).unwrap();
+    let anchor = ball(&mut w, 10.0);
+    let b = ball(&mut w, 30.0);
     let k = w.add_constraint(anchor, Some(b), Hook::Boxed(Box::new(Kick))).unwrap();
     w.remove_body(b).unwrap();
-    let c = w.add_body(BodyDef::circle(s(0.5)).position(v(60.0, 50.0))).unwrap();
+    let c = ball(&mut w, 60.0);
     assert_eq!(c.index(), b.index());
     w.step(s(DT)).unwrap();
     assert_eq!(w.body(c).unwrap().linear_velocity(), Vector2::ZERO);
@@ -219,8 +224,8 @@ impl Constraint for Pull {
 #[test]
 fn rollback_across_remove_body_loses_game_constraint() {
     let mut w = world();
-    let a = w.add_body(BodyDef::circle(s(0.5)).position(v(10.0, 50.0))).unwrap();
-    let b = w.add_body(BodyDef::circle(s(0.5)).position(v(20.0, 50.0))).unwrap();
+    let a = ball(&mut w, 10.0);
+    let b = ball(&mut w, 20.0);
     let k = w.add_constraint(a, Some(b), Hook::Boxed(Box::new(Pull))).unwrap();
     let snap = snapshot(&w);
     let start = w.body(b).unwrap().position();
@@ -247,8 +252,8 @@ fn rollback_across_remove_body_loses_game_constraint() {
 #[test]
 fn only_remove_constraint_removes_a_game_constraint() {
     let mut w = world();
-    let a = w.add_body(BodyDef::circle(s(0.5)).position(v(10.0, 50.0))).unwrap();
-    let b = w.add_body(BodyDef::circle(s(0.5)).position(v(20.0, 50.0))).unwrap();
+    let a = ball(&mut w, 10.0);
+    let b = ball(&mut w, 20.0);
     let k = w.add_constraint(a, Some(b), Hook::Boxed(Box::new(Pull))).unwrap();
     let to_point = w.add_constraint(b, None, Hook::Boxed(Box::new(Kick))).unwrap();
     w.remove_body(b).unwrap();
@@ -271,7 +276,7 @@ fn frozen_body_is_pushed_by_joint_without_limit() {
     let mut w = world();
     let a =
         w.add_body(BodyDef::circle(s(0.5)).position(v(99.0, 50.0)).linear_velocity(v(100.0, 0.0))).unwrap();
-    let b = w.add_body(BodyDef::circle(s(0.5)).position(v(90.0, 50.0))).unwrap();
+    let b = ball(&mut w, 90.0);
     let spring = JointKind::Spring { stiffness: s(100.0), rest_length: s(1000.0) };
     w.add_joint(JointDef::new(a, v(0.0, 0.0), b, v(0.0, 0.0), spring)).unwrap();
     w.step(s(DT)).unwrap();
@@ -311,7 +316,7 @@ fn a_frozen_body_is_moved_by_neither_pivot_nor_game_constraint() {
     w.step(s(DT)).unwrap();
     assert!(w.body(a).unwrap().is_out_of_bounds());
     let frozen_at = w.body(a).unwrap().position();
-    let b = w.add_body(BodyDef::circle(s(0.5)).position(v(98.0, 50.0))).unwrap();
+    let b = ball(&mut w, 98.0);
     let pivot = JointKind::Pivot { limits: None, motor: None };
     w.add_joint(JointDef::new(a, v(-1.5, 0.0), b, v(0.0, 0.0), pivot)).unwrap();
     w.add_constraint(a, Some(b), Hook::Boxed(Box::new(Drag))).unwrap();
