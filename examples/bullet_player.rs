@@ -28,12 +28,16 @@ fn bullet_hit(arbiter: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
 
 /// The game's side: which bullet hit which player. A real game keeps this in its
 /// own entity store and puts an entity id in each body's user data; here a player's
-/// user data holds the bullet that hit it (`to_bits`), so the key is all the
-/// callback needs. A key whose player has gone since decodes to a stale handle:
-/// the world answers `StaleHandle` and nothing is removed.
+/// user data holds the bullet that hit it (slot index and generation: user data is
+/// in the state hash, so it holds no world tag), so the key is all the callback
+/// needs. A key whose player has gone since decodes to a stale handle: the world
+/// answers `StaleHandle` and nothing is removed.
 fn remove_dead_player(world: &mut World<'_>, key: u64) {
     let player = BodyHandle::from_bits(key);
-    let bullet = world.body(player).map(|b| BodyHandle::from_bits(b.user_data()));
+    let bullet = world
+        .body(player)
+        .map(|b| b.user_data())
+        .map(|d| world.handle_from_parts((d >> 32) as u32, d as u32));
     let removed_player = world.remove_body(player).is_ok();
     let removed_bullet = bullet.map(|b| world.remove_body(b).is_ok()).unwrap_or(false);
     println!("post-step: removed player {removed_player}, bullet {removed_bullet}");
@@ -60,7 +64,7 @@ fn main() -> Result<(), arphysics::Error> {
             .collision_level(BULLET_LEVEL),
     )?;
     // The game remembers which bullet is flying at the player.
-    world.body_mut(player)?.set_user_data(bullet.to_bits());
+    world.body_mut(player)?.set_user_data((u64::from(bullet.index()) << 32) | u64::from(bullet.generation()));
 
     for step in 1..=30 {
         let report = world.step(s(1.0 / 60.0))?;

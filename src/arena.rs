@@ -6,10 +6,26 @@
 //! is smoltcp's "managed" storage pattern. A full arena hands the value back
 //! (`Err(value)`, as `heapless::Vec::push` does), never grows and never panics.
 //!
-//! A [`Handle`] is an index plus a generation. Removing an object bumps its slot's
-//! generation, so an old handle stops resolving (`None` / [`Error::StaleHandle`])
-//! instead of silently naming whatever reuses the slot. The all-zero handle
-//! ([`Handle::NULL`]) never resolves.
+//! A [`Handle`] is a slot index, a generation and the tag of the world that
+//! issued it (as Box2D's ids carry a world index). Removing an object bumps its
+//! slot's generation, so an old handle stops resolving (`None` /
+//! [`Error::StaleHandle`]) instead of silently naming whatever reuses the slot;
+//! a handle from another world never matches the arena's tag, so it is stale
+//! too. The all-zero handle ([`Handle::NULL`]) never resolves.
+//!
+//! Generations run from 1 to `u32::MAX`: a slot serves 2³² − 1 objects in
+//! turn, and when its last one is removed the slot is *retired* (generation 0,
+//! never reused) rather than wrapping around to a generation an old handle
+//! still holds. At one reuse per step at 60 Hz that is 2.3 years of one slot.
+//!
+//! World tags come from a process-wide counter (1 to 4,095, then round again),
+//! so they depend on how many worlds the process created before: they are never
+//! part of a snapshot or of the state hash, which store index and generation
+//! only, and `restore` gives every handle it brings back the restoring world's
+//! tag. A tag tells apart the worlds alive at once in one process (up to
+//! 4,095); it is not an identity across processes or peers: for those, send
+//! [`Handle::index`] and [`Handle::generation`] and rebuild the handle with
+//! [`World::handle_from_parts`](crate::World::handle_from_parts).
 //!
 //! Slot reuse is deterministic and independent of capacity: new objects take the
 //! most recently freed slot first (a LIFO free list), otherwise the lowest slot
@@ -62,22 +78,54 @@ impl<T: fmt::Debug> fmt::Debug for Slot<T> {
     }
 }
 
-/// A typed handle to an object in an [`Arena`]: slot index plus generation.
+/// Bits of the slot index in a packed handle ([`Handle::to_bits`]).
+pub const HANDLE_INDEX_BITS: u32 = 20;
+/// Bits of the world tag in a packed handle ([`Handle::to_bits`]).
+pub const HANDLE_TAG_BITS: u32 = 12;
+/// Most slots one store of a world may have: 2²⁰ − 1 = 1,048,575 (so that every
+/// handle packs into 64 bits; a larger capacity is an error at world creation).
+/// Slot index 2²⁰ − 1 itself is never a slot.
+pub const MAX_SLOTS: usize = (1 << HANDLE_INDEX_BITS) - 1;
+/// The largest index a handle holds: no arena of a world has this slot.
+const MAX_INDEX: u32 = (1 << HANDLE_INDEX_BITS) - 1;
+const TAG_MASK: u16 = (1 << HANDLE_TAG_BITS) - 1;
+
+/// The next world tag, from 1 to 4,095 and round again (never 0: untagged
+/// handles, such as [`Handle::from_parts`] makes, resolve in no world).
+pub(crate) fn next_world_tag() -> u16 {
+    use core::sync::atomic::{AtomicU32, Ordering};
+    static NEXT: AtomicU32 = AtomicU32::new(0);
+    let n = NEXT.fetch_add(1, Ordering::Relaxed);
+    // n % 4095 < 4095, so the tag is in 1..=4095 and fits 12 bits.
+    (n % u32::from(TAG_MASK)) as u16 + 1
+}
+
+/// A typed handle to an object in an [`Arena`]: slot index, generation, and the
+/// tag of the world that issued it.
+///
+/// A handle resolves only in the world that issued it, and only while the object
+/// it was issued for is alive: a removed object's handle, a handle from another
+/// world, a made-up one, and [`Handle::NULL`] are all [`Error::StaleHandle`]
+/// (`None` from the arena), never another object and never a panic.
+///
+/// [`Error::StaleHandle`]: crate::Error::StaleHandle
 pub struct Handle<T> {
-    index: u32,
+    /// The world tag in the high 12 bits, the slot index in the low 20 (so a
+    /// handle stays 8 bytes, as it was before it carried its world).
+    place: u32,
     generation: u32,
     marker: PhantomData<fn() -> T>,
 }
 
 impl<T> Handle<T> {
-    /// The null handle: resolves to nothing in every arena.
-    pub const NULL: Self = Self { index: 0, generation: 0, marker: PhantomData };
+    /// The null handle: resolves to nothing in every arena; packs to `0`.
+    pub const NULL: Self = Self { place: 0, generation: 0, marker: PhantomData };
 
     /// The slot index (for canonical ordering and encoding).
     #[inline]
     #[must_use]
     pub const fn index(self) -> u32 {
-        self.index
+        self.place & MAX_INDEX
     }
 
     /// The generation of the slot when this handle was issued.
@@ -87,33 +135,60 @@ impl<T> Handle<T> {
         self.generation
     }
 
-    /// Rebuilds a handle from its parts (for decoding a snapshot or a network
-    /// message). A made-up handle can only resolve to the object currently in that
-    /// slot with that generation, or to nothing.
+    /// The tag of the world that issued this handle (1 to 4,095; 0 for
+    /// [`Handle::NULL`] and for handles from [`Handle::from_parts`]). It differs
+    /// from run to run and from peer to peer: never store it in game state.
+    #[inline]
+    #[must_use]
+    pub const fn world_tag(self) -> u16 {
+        (self.place >> HANDLE_INDEX_BITS) as u16
+    }
+
+    /// Rebuilds an untagged handle from its parts. It belongs to no world, so no
+    /// world resolves it: to name an object of a world by index and generation
+    /// (decoded from a network message, say), use
+    /// [`World::handle_from_parts`](crate::World::handle_from_parts). An index
+    /// above 2²⁰ − 2 (no world has such a slot) becomes 2²⁰ − 1.
     #[inline]
     #[must_use]
     pub const fn from_parts(index: u32, generation: u32) -> Self {
-        Self { index, generation, marker: PhantomData }
+        Self::tagged(index, generation, 0)
+    }
+
+    /// A handle with the given world tag (an index past every slot is kept past
+    /// every slot; the tag is cut to its 12 bits).
+    #[inline]
+    pub(crate) const fn tagged(index: u32, generation: u32, tag: u16) -> Self {
+        let index = if index > MAX_INDEX { MAX_INDEX } else { index };
+        let tag = (tag & TAG_MASK) as u32;
+        Self { place: (tag << HANDLE_INDEX_BITS) | index, generation, marker: PhantomData }
     }
 
     /// Packs the handle into one `u64`, for a post-step callback key or a user-data
-    /// word: the slot index in the high 32 bits, the generation in the low 32
-    /// (`index << 32 | generation`). The packing is lossless and fixed, so
-    /// `Handle::from_bits(h.to_bits()) == h` for every handle, and
-    /// [`Handle::NULL`] packs to `0`. Packed handles compare as `u64`s in the
-    /// handles' canonical order (index, then generation).
+    /// word: the slot index in the high 20 bits, the world tag in the next 12, the
+    /// generation in the low 32 (`index << 44 | tag << 32 | generation`). The
+    /// packing is lossless, so `Handle::from_bits(h.to_bits()) == h` for every
+    /// handle, and [`Handle::NULL`] packs to `0`. Packed handles of one world
+    /// compare as `u64`s in the handles' canonical order (index, then generation).
+    ///
+    /// The bits hold the world tag, which depends on how many worlds the process
+    /// created before this one: use them as keys inside this process, but keep
+    /// them out of state that must be the same on every peer (a body's user data
+    /// is in the state hash); there, store `index` and `generation`.
     #[inline]
     #[must_use]
     pub const fn to_bits(self) -> u64 {
-        ((self.index as u64) << 32) | self.generation as u64
+        let (index, tag) = (self.index() as u64, self.world_tag() as u64);
+        (index << (32 + HANDLE_TAG_BITS)) | (tag << 32) | self.generation as u64
     }
 
-    /// Unpacks a handle packed by [`Handle::to_bits`] (index in the high 32 bits,
-    /// generation in the low 32); `0` gives [`Handle::NULL`].
+    /// Unpacks a handle packed by [`Handle::to_bits`] (index in the high 20 bits,
+    /// world tag in the next 12, generation in the low 32); `0` gives
+    /// [`Handle::NULL`].
     ///
-    /// Every `u64` decodes, and what it decodes to is just a handle, like one
-    /// from [`Handle::from_parts`]: if it names no live object (made-up bits, or
-    /// an object removed since it was packed), the arena resolves it to `None`
+    /// Every `u64` decodes, and what it decodes to is just a handle: if it names
+    /// no live object of the world asked (made-up bits, an object removed since it
+    /// was packed, or a handle of another world), the arena resolves it to `None`
     /// and the world answers [`Error::StaleHandle`], never a panic and never
     /// another object.
     ///
@@ -121,10 +196,13 @@ impl<T> Handle<T> {
     #[inline]
     #[must_use]
     pub const fn from_bits(bits: u64) -> Self {
-        Self::from_parts((bits >> 32) as u32, bits as u32)
+        let index = (bits >> (32 + HANDLE_TAG_BITS)) as u32;
+        let tag = ((bits >> 32) as u16) & TAG_MASK;
+        Self::tagged(index, bits as u32, tag)
     }
 
-    /// True for [`Handle::NULL`].
+    /// True for [`Handle::NULL`] (and any handle of generation 0, which no
+    /// object ever has).
     #[inline]
     #[must_use]
     pub const fn is_null(self) -> bool {
@@ -140,7 +218,7 @@ impl<T> Clone for Handle<T> {
 impl<T> Copy for Handle<T> {}
 impl<T> PartialEq for Handle<T> {
     fn eq(&self, o: &Self) -> bool {
-        self.index == o.index && self.generation == o.generation
+        self.place == o.place && self.generation == o.generation
     }
 }
 impl<T> Eq for Handle<T> {}
@@ -150,15 +228,15 @@ impl<T> PartialOrd for Handle<T> {
     }
 }
 impl<T> Ord for Handle<T> {
-    /// Orders by slot index, then generation: the canonical order of the engine.
+    /// Orders by slot index, then world tag, then generation: within one world,
+    /// the canonical order of the engine (slot index, then generation).
     fn cmp(&self, o: &Self) -> core::cmp::Ordering {
-        (self.index, self.generation).cmp(&(o.index, o.generation))
+        self.to_bits().cmp(&o.to_bits())
     }
 }
 impl<T> Hash for Handle<T> {
     fn hash<H: Hasher>(&self, h: &mut H) {
-        self.index.hash(h);
-        self.generation.hash(h);
+        self.to_bits().hash(h);
     }
 }
 impl<T> Default for Handle<T> {
@@ -168,7 +246,7 @@ impl<T> Default for Handle<T> {
 }
 impl<T> fmt::Debug for Handle<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "Handle({}v{})", self.index, self.generation)
+        write!(f, "Handle({}v{}w{})", self.index(), self.generation, self.world_tag())
     }
 }
 
@@ -210,6 +288,8 @@ pub struct Arena<'a, T, K = T, S: SlotStorage<T> = ManagedSlice<'a, Slot<T>>> {
     free_head: u32,
     /// Live objects.
     len: u32,
+    /// The tag of the world that owns the arena, carried by its handles.
+    tag: u16,
     marker: Markers<'a, T, K>,
 }
 
@@ -237,7 +317,14 @@ impl<T, K, const N: usize> Arena<'_, T, K, [Slot<T>; N]> {
     /// An empty arena stored inline (`const`, so it can be part of a `static`).
     #[must_use]
     pub const fn inline() -> Self {
-        Self { slots: [const { Slot::EMPTY }; N], used: 0, free_head: NO_SLOT, len: 0, marker: PhantomData }
+        Self {
+            slots: [const { Slot::EMPTY }; N],
+            used: 0,
+            free_head: NO_SLOT,
+            len: 0,
+            tag: 0,
+            marker: PhantomData,
+        }
     }
 }
 
@@ -247,7 +334,32 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
         for s in slots.slots_mut().iter_mut() {
             *s = Slot::EMPTY;
         }
-        Self { slots, used: 0, free_head: NO_SLOT, len: 0, marker: PhantomData }
+        Self { slots, used: 0, free_head: NO_SLOT, len: 0, tag: 0, marker: PhantomData }
+    }
+
+    /// The same empty arena, issuing handles tagged `tag` (a world gives all its
+    /// arenas its own tag when it is created). An arena made by [`Arena::new`] has
+    /// tag 0, like the handles of [`Handle::from_parts`].
+    #[must_use]
+    pub(crate) fn with_tag(mut self, tag: u16) -> Self {
+        self.tag = tag & TAG_MASK;
+        self
+    }
+
+    /// The tag this arena's handles carry.
+    #[inline]
+    pub(crate) fn tag(&self) -> u16 {
+        self.tag
+    }
+
+    /// The slot `h` names, if `h` is of this arena's world and the slot exists
+    /// (the generation is not checked).
+    #[inline]
+    fn slot_of(&self, h: Handle<K>) -> Option<&Slot<T>> {
+        if h.world_tag() != self.tag {
+            return None;
+        }
+        self.slots.slots().get(h.index() as usize)
     }
 
     /// Maximum number of objects.
@@ -298,39 +410,59 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
         } else {
             self.used = self.used.saturating_add(1);
         }
-        // Generation 0 is reserved for the null handle.
+        // Generation 0 is reserved for the null handle (and marks a retired
+        // slot, which is never on the free list): a fresh slot starts at 1.
         if slot.generation == 0 {
             slot.generation = 1;
         }
         slot.next_free = NO_SLOT;
         slot.value = Some(value);
         self.len = self.len.saturating_add(1);
-        Ok(Handle { index, generation: slot.generation, marker: PhantomData })
+        Ok(Handle::tagged(index, slot.generation, self.tag))
     }
 
-    /// Removes and returns the object, or `None` for a stale or null handle.
+    /// Removes and returns the object, or `None` for a stale, foreign or null
+    /// handle.
+    ///
+    /// The slot's generation is bumped so every outstanding handle goes stale,
+    /// and the slot goes on the free list; a slot whose generation is already
+    /// `u32::MAX` is retired instead (generation 0, never reused), so no
+    /// generation is ever issued twice for one slot.
     pub fn remove(&mut self, h: Handle<K>) -> Option<T> {
-        let slot = self.slots.slots_mut().get_mut(h.index as usize)?;
+        if h.world_tag() != self.tag {
+            return None;
+        }
+        let slot = self.slots.slots_mut().get_mut(h.index() as usize)?;
         if slot.generation != h.generation || slot.value.is_none() {
             return None;
         }
         let value = slot.value.take();
-        // Bump the generation so every outstanding handle goes stale; skip 0.
-        slot.generation = match slot.generation.wrapping_add(1) {
-            0 => 1,
-            g => g,
-        };
-        slot.next_free = self.free_head;
-        self.free_head = h.index;
         self.len = self.len.saturating_sub(1);
+        match slot.generation.checked_add(1) {
+            Some(next) => {
+                slot.generation = next;
+                slot.next_free = self.free_head;
+                self.free_head = h.index();
+            }
+            None => {
+                slot.generation = 0;
+                slot.next_free = NO_SLOT;
+            }
+        }
         value
+    }
+
+    /// Slots retired after their last generation (see [`Arena::remove`]).
+    #[must_use]
+    pub fn retired(&self) -> usize {
+        self.used_slots().iter().filter(|s| s.generation == 0 && s.value.is_none()).count()
     }
 
     /// The object behind `h`, or `None` for a stale or null handle.
     #[inline]
     #[must_use]
     pub fn get(&self, h: Handle<K>) -> Option<&T> {
-        let slot = self.slots.slots().get(h.index as usize)?;
+        let slot = self.slot_of(h)?;
         if slot.generation == h.generation {
             slot.value.as_ref()
         } else {
@@ -341,7 +473,10 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
     /// The object behind `h`, mutably, or `None` for a stale or null handle.
     #[inline]
     pub fn get_mut(&mut self, h: Handle<K>) -> Option<&mut T> {
-        let slot = self.slots.slots_mut().get_mut(h.index as usize)?;
+        if h.world_tag() != self.tag {
+            return None;
+        }
+        let slot = self.slots.slots_mut().get_mut(h.index() as usize)?;
         if slot.generation == h.generation {
             slot.value.as_mut()
         } else {
@@ -360,7 +495,7 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
     #[must_use]
     pub fn handle_at(&self, index: u32) -> Option<Handle<K>> {
         let slot = self.slots.slots().get(index as usize)?;
-        slot.value.as_ref().map(|_| Handle { index, generation: slot.generation, marker: PhantomData })
+        slot.value.as_ref().map(|_| Handle::tagged(index, slot.generation, self.tag))
     }
 
     /// The live object in slot `index`, if any (no generation check).
@@ -397,6 +532,17 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
         }
     }
 
+    /// The live objects behind two different handles, both mutably (for the two
+    /// bodies of a game constraint). `None` if either is stale, foreign or null,
+    /// or both name the same object.
+    pub(crate) fn get2_mut(&mut self, a: Handle<K>, b: Handle<K>) -> Option<(&mut T, &mut T)> {
+        let live = |h: Handle<K>| self.get(h).is_some();
+        if !live(a) || !live(b) {
+            return None;
+        }
+        self.get2_at_mut(a.index(), b.index())
+    }
+
     /// Number of slots ever used: every live object has a slot index below this.
     #[inline]
     #[must_use]
@@ -406,19 +552,20 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
 
     /// The live objects with their handles, in slot-index order.
     pub fn iter(&self) -> impl Iterator<Item = (Handle<K>, &T)> + '_ {
-        self.used_slots().iter().enumerate().filter_map(|(i, s)| {
+        let tag = self.tag;
+        self.used_slots().iter().enumerate().filter_map(move |(i, s)| {
             let value = s.value.as_ref()?;
-            Some((Handle { index: i as u32, generation: s.generation, marker: PhantomData }, value))
+            Some((Handle::tagged(i as u32, s.generation, tag), value))
         })
     }
 
     /// The live objects with their handles, mutably, in slot-index order.
     pub fn iter_mut(&mut self) -> impl Iterator<Item = (Handle<K>, &mut T)> + '_ {
-        let used = self.used as usize;
-        self.slots.slots_mut().iter_mut().take(used).enumerate().filter_map(|(i, s)| {
+        let (used, tag) = (self.used as usize, self.tag);
+        self.slots.slots_mut().iter_mut().take(used).enumerate().filter_map(move |(i, s)| {
             let generation = s.generation;
             let value = s.value.as_mut()?;
-            Some((Handle { index: i as u32, generation, marker: PhantomData }, value))
+            Some((Handle::tagged(i as u32, generation, tag), value))
         })
     }
 
@@ -500,18 +647,93 @@ mod tests {
     }
 
     #[test]
+    fn a_handle_is_as_small_as_an_untagged_one() {
+        assert_eq!(core::mem::size_of::<Handle<u8>>(), 8);
+        assert_eq!(core::mem::size_of::<Option<Handle<u8>>>(), 12);
+    }
+
+    #[test]
     fn a_handle_survives_packing_into_bits() {
-        let edges = [0, 1, 2, 0x8000_0000, u32::MAX - 1, u32::MAX];
-        for index in edges {
-            for generation in edges {
-                let h: Handle<u8> = Handle::from_parts(index, generation);
-                let bits = h.to_bits();
-                assert_eq!(bits >> 32, u64::from(index), "index in the high word");
-                assert_eq!(bits & u64::from(u32::MAX), u64::from(generation), "generation in the low word");
-                assert_eq!(Handle::<u8>::from_bits(bits), h);
+        let indices = [0, 1, 2, 0x8_0000, MAX_INDEX - 1, MAX_INDEX];
+        let generations = [0, 1, 2, 0x8000_0000, u32::MAX - 1, u32::MAX];
+        for index in indices {
+            for generation in generations {
+                for tag in [0, 1, 2, 0x800, TAG_MASK] {
+                    let h: Handle<u8> = Handle::tagged(index, generation, tag);
+                    let bits = h.to_bits();
+                    assert_eq!(bits >> 44, u64::from(index), "index in the high 20 bits");
+                    assert_eq!((bits >> 32) & 0xfff, u64::from(tag), "tag in the next 12");
+                    assert_eq!(
+                        bits & u64::from(u32::MAX),
+                        u64::from(generation),
+                        "generation in the low word"
+                    );
+                    assert_eq!(Handle::<u8>::from_bits(bits), h);
+                }
             }
         }
-        assert_eq!(Handle::<u8>::from_bits(u64::MAX), Handle::from_parts(u32::MAX, u32::MAX));
+        assert_eq!(Handle::<u8>::from_bits(u64::MAX), Handle::tagged(MAX_INDEX, u32::MAX, TAG_MASK));
+    }
+
+    #[test]
+    fn an_index_no_world_has_stays_out_of_every_world() {
+        // from_parts keeps an index past every slot past every slot, so packing
+        // cannot fold it onto a real slot.
+        let far: Handle<u8> = Handle::from_parts(u32::MAX, 1);
+        assert_eq!(far.index(), MAX_INDEX);
+        assert_eq!(Handle::<u8>::from_bits(far.to_bits()), far);
+        assert!(MAX_SLOTS <= MAX_INDEX as usize, "slot MAX_INDEX is never a slot");
+    }
+
+    #[test]
+    fn a_handle_of_another_world_does_not_resolve() {
+        let (mut s1, mut s2) = ([Slot::EMPTY; 2], [Slot::EMPTY; 2]);
+        let mut a: Arena<'_, u8> = Arena::new(&mut s1[..]).with_tag(1);
+        let mut b: Arena<'_, u8> = Arena::new(&mut s2[..]).with_tag(2);
+        let ha = a.insert(10).expect("room");
+        let hb = b.insert(20).expect("room");
+        assert_eq!(
+            (ha.index(), ha.generation()),
+            (hb.index(), hb.generation()),
+            "same slot, same generation"
+        );
+        assert_ne!(ha, hb);
+        assert_eq!(a.get(hb), None);
+        assert_eq!(a.get_mut(hb), None);
+        assert_eq!(a.remove(hb), None);
+        assert_eq!(a.get(Handle::from_parts(0, 1)), None, "untagged");
+        assert_eq!(a.get(ha), Some(&10), "world A's object is untouched");
+        assert_eq!(a.iter().map(|(h, _)| h.world_tag()).next(), Some(1));
+    }
+
+    #[test]
+    fn world_tags_are_never_zero_and_fit_twelve_bits() {
+        for _ in 0..5000 {
+            let t = next_world_tag();
+            assert!((1..=TAG_MASK).contains(&t), "tag {t}");
+        }
+    }
+
+    #[test]
+    fn a_slot_is_retired_after_its_last_generation() {
+        let mut storage = [Slot::EMPTY; 2];
+        let mut a: Arena<'_, u8> = Arena::new(&mut storage[..]);
+        let first = a.insert(1).expect("room");
+        assert_eq!(a.remove(first), Some(1));
+        // Slot 0 is free; pretend it has served 2^32 - 2 objects since.
+        a.write_slot(0, u32::MAX, NO_SLOT, None, false);
+        let last = a.insert(2).expect("room");
+        assert_eq!((last.index(), last.generation()), (0, u32::MAX), "the last generation is issued");
+        assert_eq!(a.remove(last), Some(2));
+        assert_eq!(a.retired(), 1);
+        // Neither the last handle nor the first (generation 1) comes back.
+        let next = a.insert(3).expect("room");
+        assert_eq!(next.index(), 1, "the retired slot is not reused");
+        assert_eq!(a.get(last), None);
+        assert_eq!(a.get(first), None);
+        assert_eq!(a.insert(4), Err(4), "a retired slot is lost capacity");
+        assert!(a.is_full());
+        assert_eq!(a.len(), 1);
     }
 
     #[test]

@@ -276,9 +276,13 @@ impl Body {
         self.user_data = data;
     }
 
-    /// True once the body left the world bounds: it is frozen (not moved, not
-    /// collided, not pushed) until [`World::set_position`](crate::World::set_position)
-    /// brings it back or the game removes it.
+    /// True once the body left the world bounds: it is frozen until
+    /// [`World::set_position`](crate::World::set_position) brings it back or the
+    /// game removes it. A frozen body keeps zero velocity and is moved by
+    /// nothing: not integrated, not collided, not pushed by force generators,
+    /// joints or game constraints (impulses and velocity changes on it are
+    /// ignored). The solver treats it as a static body, so a body jointed to it
+    /// is held as if anchored to a fixed point.
     #[inline]
     #[must_use]
     pub fn is_out_of_bounds(&self) -> bool {

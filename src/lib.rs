@@ -39,8 +39,9 @@
 //!   [`Rect`]; deterministic [`math::trig`] for angles at the API edge.
 //! * [`geometry`]: [`PolygonPath`] (exact convex hull, area, centroid, inertia),
 //!   circles and [`MassData`].
-//! * [`arena`]: fixed-capacity slots with generational [`Handle`]s: a removed
-//!   object's handle is an error, never another object.
+//! * [`arena`]: fixed-capacity slots with generational [`Handle`]s tagged with
+//!   their world: a removed object's handle, or another world's, is an error,
+//!   never another object.
 //! * [`body`], [`force`], [`hook`]: bodies and their [`BodyDef`], force
 //!   generators, and [`Hook`], how a world holds a game's objects.
 //! * [`index`], [`collide`], [`arbiter`], [`handler`], [`collision`]: the broad
@@ -139,7 +140,7 @@
 //! |---|---|---|
 //! | `b2WorldDef`, `b2CreateWorld` | `cpSpaceNew` | [`WorldDef`], [`World::new`] / [`World::with_capacities`] (capacities fixed up front) |
 //! | `b2BodyDef` + `b2ShapeDef` + `b2CreatePolygonShape` | `cpBodyNew` + `cpPolyShapeNew` | [`BodyDef::circle`] / [`BodyDef::polygon`]: one shape per body; polygons share a [`PolygonPath`] |
-//! | `b2BodyId` (index + generation) | `cpBody*` | [`BodyHandle`] (index + generation; stale ⇒ [`Error::StaleHandle`]) |
+//! | `b2BodyId` (world + index + generation) | `cpBody*` | [`BodyHandle`] (index + generation + world tag; stale or foreign ⇒ [`Error::StaleHandle`]) |
 //! | `b2_staticBody` / `b2_kinematicBody` / `b2_dynamicBody` | `cpBodyNewStatic` / kinematic / dynamic | [`BodyType`] |
 //! | gravity in the world def | `cpSpaceSetGravity` | a [`GravityForceGenerator`] (the manual's force generators) |
 //! | `b2Filter` categories / masks | `cpShapeFilter` groups | collision groups (shared bit ⇒ no collision) and collision levels (select handlers) |

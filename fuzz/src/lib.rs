@@ -301,7 +301,15 @@ impl HandleRef {
         match self {
             Self::Issued(i) if !issued.is_empty() => issued[usize::from(i) % issued.len()],
             Self::Last => issued.last().copied().unwrap_or(Handle::NULL),
-            Self::Parts(i, g) => Handle::from_parts(i, g),
+            // Made up in the run's own world (the tag of the handles it was
+            // given): the same slot and generation in every world of a run.
+            Self::Parts(i, g) => {
+                let untagged = Handle::<T>::from_parts(i, g);
+                match issued.first() {
+                    Some(h) => Handle::from_bits(untagged.to_bits() | (u64::from(h.world_tag()) << 32)),
+                    None => untagged,
+                }
+            }
             Self::Issued(_) | Self::Null => Handle::NULL,
         }
     }
@@ -822,7 +830,11 @@ fn post_teleport_to_centre(w: &mut World<'_>, key: u64) {
 
 fn post_add_circle(w: &mut World<'_>, key: u64) {
     let c = w.bounds().center();
-    let _ = note(w.add_body(BodyDef::circle(Scalar::ONE).position(c).user_data(key)));
+    // User data is hashed: keep the world tag (which differs between the
+    // worlds a target compares) out of it.
+    let h = BodyHandle::from_bits(key);
+    let data = (u64::from(h.index()) << 32) | u64::from(h.generation());
+    let _ = note(w.add_body(BodyDef::circle(Scalar::ONE).position(c).user_data(data)));
 }
 
 fn post_spin(w: &mut World<'_>, key: u64) {
@@ -912,7 +924,7 @@ fn post_solve_fn(i: u8) -> fn(&Arbiter, &mut CallbackContext<'_>) {
         _ => |a, ctx| {
             // Many keys: fills the post-step queue.
             for k in 0..80u64 {
-                let _ = ctx.add_post_step_callback(post_spin, a.body_a().to_bits().wrapping_add(k << 40));
+                let _ = ctx.add_post_step_callback(post_spin, a.body_a().to_bits().wrapping_add(k << 44));
             }
         },
     }
@@ -1146,7 +1158,8 @@ fn summarise_handles(count: usize, out: &[BodyHandle]) -> u64 {
     let mut s = Summary::default();
     s.add(count as u64);
     for h in out.iter().take(count) {
-        s.add(h.to_bits());
+        // Index and generation: the world tag differs between compared worlds.
+        s.add((u64::from(h.index()) << 32) | u64::from(h.generation()));
     }
     s.0
 }

@@ -4,6 +4,7 @@
 //! slice.
 
 use super::invalid;
+use crate::arena::Handle;
 use crate::error::Error;
 use crate::math::scalar::Scalar;
 use crate::math::{Rect, Rot, Vector2};
@@ -13,11 +14,25 @@ use crate::math::{Rect, Rot, Vector2};
 pub(super) struct Cursor<'b> {
     buf: &'b [u8],
     pos: usize,
+    /// The world tag the handles read get (see [`Cursor::handle`]).
+    tag: u16,
 }
 
 impl<'b> Cursor<'b> {
     pub(super) fn at(buf: &'b [u8], pos: usize) -> Self {
-        Self { buf, pos }
+        Self { buf, pos, tag: 0 }
+    }
+
+    /// The same cursor, giving the handles it reads the world tag `tag`.
+    pub(super) fn tagged(self, tag: u16) -> Self {
+        Self { tag, ..self }
+    }
+
+    /// A handle stored as index and generation (a snapshot holds no world tag),
+    /// tagged with the cursor's tag: the restoring world's.
+    pub(super) fn handle<T>(&mut self) -> Result<Handle<T>, Error> {
+        let (index, generation) = (self.u32()?, self.u32()?);
+        Ok(Handle::tagged(index, generation, self.tag))
     }
 
     /// Offset of the next byte to read.

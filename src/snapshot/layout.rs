@@ -51,6 +51,8 @@ pub(super) struct Layout<'b> {
     pub(super) arbiters_at: usize,
     pub(super) joints: Alloc,
     pub(super) joints_at: usize,
+    /// The world tag of the handles read (0 unless [`Layout::for_world`]).
+    pub(super) tag: u16,
 }
 
 fn read_alloc(c: &mut Cursor<'_>) -> Result<Alloc, Error> {
@@ -153,18 +155,25 @@ impl<'b> Layout<'b> {
             arbiters_at,
             joints,
             joints_at,
+            tag: 0,
         })
     }
 
+    /// The same layout, reading handles as the world with tag `tag` issues
+    /// them (a restore reads with its own world's tag).
+    pub(super) fn for_world(self, tag: u16) -> Self {
+        Self { tag, ..self }
+    }
+
     fn record(&self, at: usize, i: u32, size: usize) -> Cursor<'b> {
-        Cursor::at(self.buf, at.saturating_add((i as usize).saturating_mul(size)))
+        Cursor::at(self.buf, at.saturating_add((i as usize).saturating_mul(size))).tagged(self.tag)
     }
 
     pub(super) fn props(&self, i: u32) -> Result<Props, Error> {
         let mut c = self.record(self.props_at, i, PROPS_RECORD);
         let shape = match c.u8()? {
             0 => Shape::Circle { radius: c.scalar()? },
-            1 => Shape::Polygon(crate::body::PathHandle::from_parts(c.u32()?, c.u32()?)),
+            1 => Shape::Polygon(c.handle()?),
             _ => return Err(invalid("unknown shape")),
         };
         let body_type = match c.u8()? {
@@ -201,13 +210,16 @@ impl<'b> Layout<'b> {
     }
 
     pub(super) fn generators(&self) -> GeneratorIter<'b> {
-        GeneratorIter { c: Cursor::at(self.buf, self.generators_at), left: self.generators.used }
+        GeneratorIter {
+            c: Cursor::at(self.buf, self.generators_at).tagged(self.tag),
+            left: self.generators.used,
+        }
     }
 
     pub(super) fn arbiter(&self, i: u32) -> Result<ArbiterRecord, Error> {
         let mut c = self.record(self.arbiters_at, i, ARBITER_RECORD);
-        let a = BodyHandle::from_parts(c.u32()?, c.u32()?);
-        let b = BodyHandle::from_parts(c.u32()?, c.u32()?);
+        let a = c.handle()?;
+        let b = c.handle()?;
         let state = c.u8()?;
         let steps_separated = c.u32()?;
         let count = c.u8()?;
@@ -318,7 +330,7 @@ fn read_targets(c: &mut Cursor<'_>) -> Result<Targets, Error> {
             let n = c.u8()?;
             let mut v = heapless::Vec::new();
             for _ in 0..n {
-                let h = BodyHandle::from_parts(c.u32()?, c.u32()?);
+                let h = c.handle()?;
                 v.push(h).map_err(|_| invalid("too many generator targets"))?;
             }
             Targets::Bodies(v)
@@ -384,9 +396,9 @@ pub(super) struct JointRecord {
 }
 
 fn read_joint(c: &mut Cursor<'_>) -> Result<Joint, Error> {
-    let body_a = BodyHandle::from_parts(c.u32()?, c.u32()?);
+    let body_a = c.handle()?;
     let has_b = c.bool()?;
-    let hb = BodyHandle::from_parts(c.u32()?, c.u32()?);
+    let hb: BodyHandle = c.handle()?;
     let anchor_a = c.vector()?;
     let anchor_b = c.vector()?;
     let collide_connected = c.bool()?;

@@ -274,13 +274,25 @@ impl World<'_> {
     /// single-bit flip, for instance) is rejected; then every field is validated
     /// against the world, and only then is anything changed.
     ///
+    /// A snapshot holds slot indices and generations, not the world tag
+    /// handles carry (see [`crate::arena`]): a world of the same settings and
+    /// capacities can restore another world's snapshot, and the handles it then
+    /// gives out (and those in its arbiters, joints and generators) are its own.
+    ///
+    /// Game constraints ([`World::add_constraint`]) are not in the snapshot and
+    /// stay registered through a restore; each is active exactly when its bodies,
+    /// by handle, are in the restored state: one whose body was removed after the
+    /// snapshot comes back to life with it, one whose body did not exist yet is
+    /// dormant. Built-in joints are in the snapshot and come back with it.
+    ///
     /// # Errors
     /// [`Error::InvalidSnapshot`] for truncated, corrupted or foreign bytes;
     /// [`Error::SnapshotMismatch`] for a snapshot of another world (other settings
     /// or paths, more objects than this world's capacities, custom generators in
     /// other slots). On error the world is unchanged.
     pub fn restore(&mut self, buf: &[u8]) -> Result<(), Error> {
-        let layout = layout::Layout::parse(buf)?;
+        // The snapshot holds no world tag: its handles become this world's.
+        let layout = layout::Layout::parse(buf)?.for_world(self.bodies.tag());
         validate::validate(self, &layout)?;
         apply::apply(self, &layout);
         Ok(())

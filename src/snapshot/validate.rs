@@ -24,17 +24,21 @@ use crate::world::{World, MAX_COORDINATE};
 /// `used`, no slot twice, and it covers exactly `used − len` slots.
 fn check_free_list(
     alloc: Alloc,
+    retired: u32,
     mut free_at: impl FnMut(u32) -> Result<Option<u32>, Error>,
 ) -> Result<(), Error> {
-    let expected =
-        alloc.used.checked_sub(alloc.len).ok_or_else(|| invalid("more live objects than slots"))?;
+    let expected = alloc
+        .used
+        .checked_sub(alloc.len)
+        .and_then(|free| free.checked_sub(retired))
+        .ok_or_else(|| invalid("more live objects than slots"))?;
     let mut at = alloc.free_head;
     let mut seen = 0u32;
     while at != NO_LINK {
         if at >= alloc.used || seen >= expected {
             return Err(invalid("broken free list"));
         }
-        at = free_at(at)?.ok_or_else(|| invalid("free list through a live slot"))?;
+        at = free_at(at)?.ok_or_else(|| invalid("free list through a live or retired slot"))?;
         seen = seen.saturating_add(1);
     }
     if seen != expected {
@@ -115,9 +119,13 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
     if l.bodies.used as usize > w.bodies.capacity() || l.bodies.used > NO_LINK {
         return Err(Error::SnapshotMismatch { what: "more bodies than this world holds" });
     }
-    let mut live = 0u32;
+    let (mut live, mut retired) = (0u32, 0u32);
     for i in 0..l.bodies.used {
         let r = l.body(i)?;
+        if !r.live() && r.generation == 0 {
+            // A slot retired after its last generation (arena.rs).
+            retired = retired.saturating_add(1);
+        }
         if r.live() {
             if r.generation == 0 {
                 return Err(invalid("a live body with generation 0"));
@@ -134,14 +142,17 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
     if live != l.bodies.len {
         return Err(invalid("live body count does not match"));
     }
-    check_free_list(l.bodies, |i| {
+    check_free_list(l.bodies, retired, |i| {
         let r = l.body(i)?;
-        Ok((!r.live()).then(|| r.index()))
+        Ok((!r.live() && r.generation != 0).then(|| r.index()))
     })?;
     // Generators.
-    let mut live = 0u32;
+    let (mut live, mut retired) = (0u32, 0u32);
     for (i, rec) in l.generators().enumerate() {
         let GeneratorRecord { generation, generator: g, .. } = rec?;
+        if g == StoredGenerator::Free && generation == 0 {
+            retired = retired.saturating_add(1);
+        }
         let world_custom = matches!(w.generators.get_at(i as u32), Some(Generator::Custom(_)));
         if let Some(t) = g.targets() {
             check_targets(t)?;
@@ -163,10 +174,10 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
     if live != l.generators.len {
         return Err(invalid("live generator count does not match"));
     }
-    check_free_list(l.generators, |i| {
-        let GeneratorRecord { next, generator: g, .. } =
+    check_free_list(l.generators, retired, |i| {
+        let GeneratorRecord { generation, next, generator: g } =
             l.generators().nth(i as usize).ok_or_else(|| invalid("truncated"))??;
-        Ok((g == StoredGenerator::Free).then_some(next))
+        Ok((g == StoredGenerator::Free && generation != 0).then_some(next))
     })?;
     // Arbiters: sorted by key, at most two points, a state that persists.
     if l.arbiters as usize > w.arbiters.capacity() {
@@ -194,9 +205,12 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
     if l.joints.used as usize > w.joints.capacity() || l.joints.used > NO_LINK {
         return Err(Error::SnapshotMismatch { what: "more joints than this world holds" });
     }
-    let mut live = 0u32;
+    let (mut live, mut retired) = (0u32, 0u32);
     for i in 0..l.joints.used {
         let r = l.joint(i)?;
+        if r.joint.is_none() && r.generation == 0 {
+            retired = retired.saturating_add(1);
+        }
         if let Some(j) = &r.joint {
             if r.generation == 0 {
                 return Err(invalid("a live joint with generation 0"));
@@ -216,9 +230,9 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
     if live != l.joints.len {
         return Err(invalid("live joint count does not match"));
     }
-    check_free_list(l.joints, |i| {
+    check_free_list(l.joints, retired, |i| {
         let r = l.joint(i)?;
-        Ok(r.joint.is_none().then_some(r.next))
+        Ok((r.joint.is_none() && r.generation != 0).then_some(r.next))
     })?;
     Ok(())
 }

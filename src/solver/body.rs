@@ -26,7 +26,7 @@ pub struct SolverBody {
     pub(crate) forced: bool,
     /// Integrates its position (not static, in bounds).
     pub(crate) moves: bool,
-    /// Takes impulses (dynamic): contacts change its velocity.
+    /// Takes impulses (dynamic, in bounds): contacts change its velocity.
     pub(crate) dynamic: bool,
 }
 
@@ -45,7 +45,9 @@ impl SolverBody {
         dynamic: false,
     };
 
-    /// Loads a body's state; `inv_n` is 1 / sub-steps.
+    /// Loads a body's state; `inv_n` is 1 / sub-steps. A frozen (out of
+    /// bounds) body is loaded as a static one: no forces, no impulses, not
+    /// integrated.
     #[inline]
     pub(crate) fn load(b: &Body, inv_n: Scalar) -> Self {
         Self {
@@ -58,7 +60,7 @@ impl SolverBody {
             force_dw: b.force_dw * inv_n,
             forced: b.is_dynamic() && !b.out_of_bounds,
             moves: b.moved_by_step(),
-            dynamic: b.is_dynamic(),
+            dynamic: b.is_dynamic() && !b.out_of_bounds,
         }
     }
 
@@ -93,9 +95,11 @@ impl Default for SolverBody {
     }
 }
 
-/// Inverse mass and inertia a body contributes to a contact (0 unless dynamic).
+/// Inverse mass and inertia a body contributes to a contact or a joint (0
+/// unless dynamic and in bounds: a frozen body is as immovable as a static one,
+/// see [`Body::is_out_of_bounds`]).
 pub(crate) fn inverse_mass(b: &Body) -> (Scalar, Scalar) {
-    if b.is_dynamic() {
+    if b.is_dynamic() && !b.out_of_bounds {
         (b.mass.inv_mass, b.mass.inv_inertia)
     } else {
         (ZERO, ZERO)

@@ -207,11 +207,12 @@ fn load(
     solver.count = count;
 }
 
-/// Writes the solver's copy of every body back to the bodies.
+/// Writes the solver's copy of every body the step moves back to the bodies
+/// (static and frozen bodies keep their state untouched).
 fn store_bodies(solver: &Solver<'_>, bodies: &mut Arena<'_, Body>) {
     let sbodies: &[SolverBody] = &solver.bodies;
     for (i, b) in bodies.iter_mut() {
-        if let Some(sb) = sbodies.get(i.index() as usize) {
+        if let Some(sb) = sbodies.get(i.index() as usize).filter(|sb| sb.moves) {
             sb.store(b);
         }
     }
@@ -275,27 +276,33 @@ fn prepare_joints(
             j.prepare(a, b, ctx.joint_softness);
         }
     }
+    // A dormant game constraint (a body of it removed) is skipped.
     for (_, c) in constraints.iter_mut() {
-        let b = c.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
-        if let Some(a) = bodies.get(c.body_a) {
+        let b = match c.body_b {
+            Some(hb) => bodies.get(hb),
+            None => Some(&ground),
+        };
+        if let (Some(a), Some(b)) = (bodies.get(c.body_a), b) {
             c.constraint.prepare(a, b, ctx.dt);
         }
     }
 }
 
-/// The game's constraints, once per sub-step, in registration order.
+/// The game's constraints, once per sub-step, in registration order. Bodies
+/// are looked up by handle (slot, generation and world), so a constraint never
+/// acts on another body that took the slot of its own; a dormant one (a body
+/// of it removed) is skipped.
 fn solve_user_constraints(bodies: &mut Arena<'_, Body>, constraints: &mut UserConstraints<'_>, h: Scalar) {
     for (_, c) in constraints.iter_mut() {
-        let ia = c.body_a.index();
         match c.body_b {
             Some(hb) => {
-                if let Some((a, b)) = bodies.get2_at_mut(ia, hb.index()) {
+                if let Some((a, b)) = bodies.get2_mut(c.body_a, hb) {
                     c.constraint.solve(a, b, h);
                 }
             }
             None => {
                 let mut ground = crate::constraint::ground();
-                if let Some(a) = bodies.get_at_mut(ia) {
+                if let Some(a) = bodies.get_mut(c.body_a) {
                     c.constraint.solve(a, &mut ground, h);
                 }
             }

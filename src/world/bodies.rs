@@ -1,5 +1,6 @@
 //! The body and polygon-path API of [`World`]: create, read, move, remove.
 
+use crate::arena::Handle;
 use crate::body::{compute_aabb, Body, BodyDef, BodyHandle, BodyType, MassSpec, PathHandle, Shape};
 use crate::collision;
 use crate::error::Error;
@@ -129,6 +130,14 @@ impl World<'_> {
     /// for each pair that had begun (the body is still readable then), in pair
     /// order, and the arbiters are dropped. Safe to call from a post-step callback.
     ///
+    /// The built-in joints attached to the body are removed with it (they are
+    /// state: a [`restore`](World::restore) to a snapshot taken before brings
+    /// them back). The game constraints attached to it
+    /// ([`add_constraint`](World::add_constraint)) stay registered but go
+    /// *dormant*: they are not solved while the body is gone, and they come back
+    /// to life if a restore brings that very body (same handle) back. Only
+    /// [`remove_constraint`](World::remove_constraint) removes them.
+    ///
     /// Post-step callbacks that those `end` handlers queue run before this call
     /// returns (after the body is gone), drained as the step drains them; called
     /// from a post-step callback or a joint-break callback, it leaves them to the
@@ -142,14 +151,14 @@ impl World<'_> {
         }
         let World { bodies, arbiters, handlers, post_step, .. } = self;
         collision::end_arbiters_of(h.index(), bodies, arbiters, handlers, post_step);
-        self.remove_constraints_of(h);
+        self.remove_joints_of(h);
         let body = self.bodies.remove(h).ok_or(Error::StaleHandle);
         self.drain_post_step_outside_step();
         body
     }
 
-    /// Removes every joint and game constraint attached to `h`.
-    fn remove_constraints_of(&mut self, h: BodyHandle) {
+    /// Removes every built-in joint attached to `h`.
+    fn remove_joints_of(&mut self, h: BodyHandle) {
         for i in 0..self.joints.slots_used() {
             let attached =
                 self.joints.get_at(i).is_some_and(|j| j.def.body_a == h || j.def.body_b == Some(h));
@@ -157,12 +166,16 @@ impl World<'_> {
                 self.joints.remove(jh);
             }
         }
-        for i in 0..self.constraints.slots_used() {
-            let attached = self.constraints.get_at(i).is_some_and(|c| c.body_a == h || c.body_b == Some(h));
-            if let (true, Some(ch)) = (attached, self.constraints.handle_at(i)) {
-                self.constraints.remove(ch);
-            }
-        }
+    }
+
+    /// The handle of slot `index` at `generation` in this world: the inverse of
+    /// [`Handle::index`] and [`Handle::generation`], for handles that travel
+    /// without their world tag (a network message from a peer, whose world
+    /// has another tag but the same slots and generations). It resolves only if
+    /// that object is alive, like any handle.
+    #[must_use]
+    pub fn handle_from_parts<T>(&self, index: u32, generation: u32) -> Handle<T> {
+        Handle::tagged(index, generation, self.bodies.tag())
     }
 
     /// The body behind `h`.
@@ -249,4 +262,44 @@ impl World<'_> {
 /// The unit rotation in the direction of `q`, or an error for (0, 0).
 fn normalized_rotation(q: Rot) -> Result<Rot, Error> {
     Rot::from_direction(Vector2::new(q.c, q.s)).ok_or(Error::OutOfRange { what: "rotation" })
+}
+
+#[cfg(all(test, feature = "alloc"))]
+mod tests {
+    use crate::arena::NO_SLOT;
+    use crate::{BodyDef, Capacities, Scalar, Vector2, World, WorldDef};
+
+    fn circle_at(x: i32) -> BodyDef {
+        BodyDef::circle(Scalar::ONE).position(Vector2::new(Scalar::from(x), Scalar::from(10)))
+    }
+
+    /// A slot retired after its last generation (see `arena.rs`) is state like
+    /// any other: a snapshot holds it, a restore keeps it out of use, and the
+    /// next body takes another slot in both worlds.
+    #[test]
+    fn a_retired_body_slot_survives_a_snapshot_round_trip() {
+        let def = || WorldDef::new(Scalar::from(100), Scalar::from(100));
+        let mut w = World::with_capacities(def(), Capacities::for_bodies(4)).expect("world");
+        let first = w.add_body(circle_at(10)).expect("room");
+        let keep = w.add_body(circle_at(20)).expect("room");
+        w.remove_body(first).expect("live");
+        // Slot 0 is free; pretend it has served 2^32 - 2 bodies since.
+        w.bodies.write_slot(0, u32::MAX, NO_SLOT, None, false);
+        let last = w.add_body(circle_at(30)).expect("room");
+        assert_eq!((last.index(), last.generation()), (0, u32::MAX));
+        w.remove_body(last).expect("live");
+        assert_eq!(w.bodies.retired(), 1);
+
+        let mut buf = alloc::vec![0u8; w.snapshot_len()];
+        w.snapshot(&mut buf).expect("fits");
+        let mut other = World::with_capacities(def(), Capacities::for_bodies(4)).expect("world");
+        other.restore(&buf).expect("a retired slot is a valid state");
+        assert_eq!(other.state_hash(), w.state_hash());
+        assert_eq!(other.bodies.retired(), 1);
+        let (a, b) = (w.add_body(circle_at(40)).expect("room"), other.add_body(circle_at(40)).expect("room"));
+        assert_eq!((a.index(), a.generation()), (2, 1), "the retired slot 0 is skipped");
+        assert_eq!((b.index(), b.generation()), (2, 1));
+        assert_eq!(w.body(keep).map(|b| b.position().x), Ok(Scalar::from(20)));
+        assert!(w.body(last).is_err() && w.body(first).is_err());
+    }
 }

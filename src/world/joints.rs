@@ -67,6 +67,20 @@ impl<'a> World<'a> {
     /// `None`), borrowed or boxed: `Hook::Borrowed(&mut c)` /
     /// `Hook::Boxed(Box::new(c))` (see [`Hook`]).
     ///
+    /// The constraint names its bodies by handle. It is a game hook, not state:
+    /// it is not in a snapshot, and [`restore`](World::restore) leaves it
+    /// registered as it is. While one of its bodies is gone (removed, or not in
+    /// the state a restore brought back) it is *dormant*: not solved, and never
+    /// handed another body that took the slot. It comes back to life when that
+    /// very body (same handle) is back, e.g. after a restore to a snapshot taken
+    /// before the removal, so rolling back across
+    /// [`remove_body`](World::remove_body) replays bit for bit. Only
+    /// [`remove_constraint`](World::remove_constraint) removes it (and frees its
+    /// place among the
+    /// [`MAX_USER_CONSTRAINTS`](crate::constraint::MAX_USER_CONSTRAINTS)); see
+    /// [`constraint_is_active`](World::constraint_is_active) and
+    /// [`dormant_constraints`](World::dormant_constraints).
+    ///
     /// # Errors
     /// [`Error::StaleHandle`]; [`Error::InvalidOperation`] for a body with itself;
     /// [`Error::CapacityFull`] when
@@ -88,11 +102,34 @@ impl<'a> World<'a> {
             .map_err(|_| Error::CapacityFull { what: "constraint" })
     }
 
-    /// Removes a game constraint.
+    /// Removes a game constraint, active or dormant.
     ///
     /// # Errors
     /// [`Error::StaleHandle`].
     pub fn remove_constraint(&mut self, h: ConstraintHandle) -> Result<(), Error> {
         self.constraints.remove(h).map(drop).ok_or(Error::StaleHandle)
+    }
+
+    /// True when the game constraint is solved by the next step: its bodies are
+    /// all in the world. False when it is dormant (a body of it is gone; see
+    /// [`add_constraint`](World::add_constraint)).
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`] for a constraint that was removed.
+    pub fn constraint_is_active(&self, h: ConstraintHandle) -> Result<bool, Error> {
+        let c = self.constraints.get(h).ok_or(Error::StaleHandle)?;
+        Ok(self.attached(c))
+    }
+
+    /// The dormant game constraints (a body of each is gone), in registration
+    /// (slot) order: a game that removed them for good calls
+    /// [`remove_constraint`](World::remove_constraint) on each.
+    pub fn dormant_constraints(&self) -> impl Iterator<Item = ConstraintHandle> + use<'_, 'a> {
+        self.constraints.iter().filter(|(_, c)| !self.attached(c)).map(|(h, _)| h)
+    }
+
+    /// True when every body of `c` is alive.
+    fn attached(&self, c: &UserConstraint<'_>) -> bool {
+        self.bodies.contains(c.body_a) && c.body_b.is_none_or(|b| self.bodies.contains(b))
     }
 }

@@ -61,6 +61,15 @@ use crate::step::{self, StepContext, StepParts};
 /// steps again).
 pub type JointBreakFn = for<'w> fn(&mut World<'w>, JointHandle, Joint);
 
+/// Every handle packs into 64 bits (see [`crate::arena`]): a store of more than
+/// [`MAX_SLOTS`](crate::arena::MAX_SLOTS) slots is an error.
+fn check_slot_capacities(bodies: usize, paths: usize, joints: usize) -> Result<(), Error> {
+    if bodies.max(paths).max(joints) > crate::arena::MAX_SLOTS {
+        return Err(Error::OutOfRange { what: "capacity (at most 1,048,575 slots a store)" });
+    }
+    Ok(())
+}
+
 /// The simulation: bodies, shared polygon paths, force generators, joints,
 /// collision hooks, and `step`.
 pub struct World<'a> {
@@ -86,14 +95,19 @@ pub struct World<'a> {
 }
 
 impl<'a> World<'a> {
-    /// A world on the given storage.
+    /// A world on the given storage. The world takes a new tag (see
+    /// [`arena`](crate::arena)), which every handle it gives out carries, so
+    /// handles of another world are [`Error::StaleHandle`] here.
     ///
     /// # Errors
     /// [`Error::OutOfRange`] for bounds that are empty or exceed
-    /// ±[`MAX_COORDINATE`], or settings outside their ranges.
+    /// ±[`MAX_COORDINATE`], settings outside their ranges, or more than
+    /// [`MAX_SLOTS`](crate::arena::MAX_SLOTS) body, path or joint slots.
     pub fn new(def: WorldDef, storage: Storage<'a>) -> Result<Self, Error> {
         def.validate()?;
         let s = storage;
+        check_slot_capacities(s.bodies.len(), s.paths.len(), s.joints.len())?;
+        let tag = crate::arena::next_world_tag();
         let capacities = Capacities {
             bodies: s.bodies.len(),
             paths: s.paths.len(),
@@ -103,9 +117,9 @@ impl<'a> World<'a> {
         };
         Ok(Self {
             def,
-            bodies: Arena::new(s.bodies),
-            paths: Arena::new(s.paths),
-            generators: Arena::inline(),
+            bodies: Arena::new(s.bodies).with_tag(tag),
+            paths: Arena::new(s.paths).with_tag(tag),
+            generators: Arena::inline().with_tag(tag),
             broad_phase: BroadPhase {
                 index: Index::default(),
                 auto_sweep: SortAndSweepIndex::new(s.sweep_order),
@@ -119,9 +133,9 @@ impl<'a> World<'a> {
             post_step: PostStepQueue::new(s.post_step),
             in_step_hooks: false,
             stats: WorldStats { capacities, ..WorldStats::default() },
-            joints: Arena::new(s.joints),
+            joints: Arena::new(s.joints).with_tag(tag),
             solver: Solver { bodies: s.solver_bodies, constraints: s.contact_constraints, count: 0 },
-            constraints: Arena::inline(),
+            constraints: Arena::inline().with_tag(tag),
             break_callback: None,
             step_count: 0,
         })
@@ -134,6 +148,8 @@ impl<'a> World<'a> {
     /// heap cannot hold ([`Error::OutOfRange`], [`Error::OutOfMemory`]).
     #[cfg(feature = "alloc")]
     pub fn with_capacities(def: WorldDef, capacities: Capacities) -> Result<Self, Error> {
+        // Checked before allocating, as `new` checks it after.
+        check_slot_capacities(capacities.bodies, capacities.paths, capacities.joints)?;
         Self::new(def, Storage::with_capacities(capacities)?)
     }
 
