@@ -57,8 +57,13 @@ pub const MAX_POST_STEP_ROUNDS: u32 = 256;
 /// A post-step callback: runs once after the step with the world and its key.
 ///
 /// # If it panics
-/// A panic unwinds out of [`World::step`](crate::World::step) with the world
-/// half-stepped: the step itself is complete (counter advanced, broken joints removed), the callbacks before this one ran and the ones after it are dropped from the queue. The world stays memory-safe and usable, but its state
+/// With `std` and the panic guard on (the default), a panic restores the world
+/// to its state before the step and then unwinds out of
+/// [`World::step`](crate::World::step). Without the guard (`no_std`, or
+/// [`World::set_panic_guard`](crate::World::set_panic_guard)`(false)`) it unwinds
+/// with the world half-stepped: the step itself is complete (counter advanced, broken joints
+/// removed), the callbacks before this one ran and the ones after it are dropped from the queue.
+/// The world stays memory-safe and usable, but its state
 /// is not one any uninterrupted run reaches. The way back is the snapshot taken
 /// before the step: [`World::restore`](crate::World::restore) it (a game that
 /// catches panics with `std::panic::catch_unwind` should restore before it
@@ -69,8 +74,14 @@ pub type PostStepFn = for<'w> fn(&mut World<'w>, u64);
 /// the collision, so implement only what you need.
 ///
 /// # If it panics
-/// A panic unwinds out of [`World::step`](crate::World::step) with the world
-/// half-stepped: a panic in `begin`, `pre_solve` or `end` leaves some arbiters of this step updated and others not, before the solver; one in `post_solve` leaves the bodies moved and the impulses stored, with the step counter not advanced and the post-step queue not run. The world stays memory-safe and usable, but its state
+/// With `std` and the panic guard on (the default), a panic restores the world
+/// to its state before the step and then unwinds out of
+/// [`World::step`](crate::World::step). Without the guard (`no_std`, or
+/// [`World::set_panic_guard`](crate::World::set_panic_guard)`(false)`) it unwinds
+/// with the world half-stepped: a panic in `begin`, `pre_solve` or `end` leaves some arbiters of
+/// this step updated and others not, before the solver; one in `post_solve` leaves the bodies moved
+/// and the impulses stored, with the step counter not advanced and the post-step queue not run. The
+/// world stays memory-safe and usable, but its state
 /// is not one any uninterrupted run reaches. The way back is the snapshot taken
 /// before the step: [`World::restore`](crate::World::restore) it (a game that
 /// catches panics with `std::panic::catch_unwind` should restore before it

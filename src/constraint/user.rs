@@ -20,8 +20,13 @@ pub type ConstraintHandle = Handle<ConstraintMarker>;
 /// iteration (the manual's `Constraint::solve`).
 ///
 /// # If it panics
-/// A panic unwinds out of [`World::step`](crate::World::step) with the world
-/// half-stepped: the solver's copy of the bodies is partly written back, some sub-steps are done and positions partly integrated. The world stays memory-safe and usable, but its state
+/// With `std` and the panic guard on (the default), a panic restores the world
+/// to its state before the step and then unwinds out of
+/// [`World::step`](crate::World::step). Without the guard (`no_std`, or
+/// [`World::set_panic_guard`](crate::World::set_panic_guard)`(false)`) it unwinds
+/// with the world half-stepped: the solver's copy of the bodies is partly written back, some
+/// sub-steps are done and positions partly integrated. The world stays memory-safe and usable, but
+/// its state
 /// is not one any uninterrupted run reaches. The way back is the snapshot taken
 /// before the step: [`World::restore`](crate::World::restore) it (a game that
 /// catches panics with `std::panic::catch_unwind` should restore before it

@@ -32,8 +32,13 @@ pub const MAX_TARGETS: usize = 32;
 /// A force generator: the manual's `shouldApplyToBody` / `applyToBody`.
 ///
 /// # If it panics
-/// A panic unwinds out of [`World::step`](crate::World::step) with the world
-/// half-stepped: the generators before it have changed the velocities of this step, the bodies after it have not, and nothing has moved yet. The world stays memory-safe and usable, but its state
+/// With `std` and the panic guard on (the default), a panic restores the world
+/// to its state before the step and then unwinds out of
+/// [`World::step`](crate::World::step). Without the guard (`no_std`, or
+/// [`World::set_panic_guard`](crate::World::set_panic_guard)`(false)`) it unwinds
+/// with the world half-stepped: the generators before it have changed the velocities of this step,
+/// the bodies after it have not, and nothing has moved yet. The world stays memory-safe and usable,
+/// but its state
 /// is not one any uninterrupted run reaches. The way back is the snapshot taken
 /// before the step: [`World::restore`](crate::World::restore) it (a game that
 /// catches panics with `std::panic::catch_unwind` should restore before it

@@ -60,6 +60,9 @@ impl<'a> World<'a> {
 
     /// Sets the function called after a step for each joint that broke.
     pub fn set_joint_break_callback(&mut self, f: Option<JointBreakFn>) {
+        if f.is_some() {
+            self.arm_panic_guard();
+        }
         self.break_callback = f;
     }
 
@@ -97,9 +100,12 @@ impl<'a> World<'a> {
         if Some(a) == b {
             return Err(Error::InvalidOperation { what: "a constraint between a body and itself" });
         }
-        self.constraints
+        let h = self
+            .constraints
             .insert(UserConstraint { body_a: a, body_b: b, constraint: c })
-            .map_err(|_| Error::CapacityFull { what: "constraint" })
+            .map_err(|_| Error::CapacityFull { what: "constraint" })?;
+        self.arm_panic_guard();
+        Ok(h)
     }
 
     /// Removes a game constraint, active or dormant.

@@ -20,6 +20,8 @@
 mod bodies;
 pub mod def;
 mod joints;
+#[cfg(feature = "std")]
+mod panic_guard;
 mod stats;
 pub mod storage;
 
@@ -53,8 +55,13 @@ use crate::step::{self, StepContext, StepParts};
 /// joint as it was.
 ///
 /// # If it panics
-/// A panic unwinds out of [`World::step`](crate::World::step) with the world
-/// half-stepped: the step is complete, the joints before this one are removed, this joint is already removed, the later broken joints stay in the world marked broken, and the post-step callbacks have not run. The world stays memory-safe and usable, but its state
+/// With `std` and the panic guard on (the default), a panic restores the world
+/// to its state before the step and then unwinds out of
+/// [`World::step`](crate::World::step). Without the guard (`no_std`, or
+/// [`World::set_panic_guard`](crate::World::set_panic_guard)`(false)`) it unwinds
+/// with the world half-stepped: the step is complete, the joints before this one are removed, this
+/// joint is already removed, the later broken joints stay in the world marked broken, and the
+/// post-step callbacks have not run. The world stays memory-safe and usable, but its state
 /// is not one any uninterrupted run reaches. The way back is the snapshot taken
 /// before the step: [`World::restore`](crate::World::restore) it (a game that
 /// catches panics with `std::panic::catch_unwind` should restore before it
@@ -92,6 +99,17 @@ pub struct World<'a> {
     pub(crate) constraints: UserConstraints<'a>,
     pub(crate) break_callback: Option<JointBreakFn>,
     pub(crate) step_count: u64,
+    /// With `std`: the snapshot a step with hooks is rolled back to if a hook
+    /// panics (see `world/panic_guard.rs`).
+    #[cfg(feature = "std")]
+    pub(crate) panic_guard: panic_guard::PanicGuard,
+}
+
+/// Without `std` there is no guard to arm (see `world/panic_guard.rs`).
+#[cfg(not(feature = "std"))]
+impl World<'_> {
+    #[inline]
+    pub(crate) fn arm_panic_guard(&mut self) {}
 }
 
 impl<'a> World<'a> {
@@ -138,6 +156,8 @@ impl<'a> World<'a> {
             constraints: Arena::inline().with_tag(tag),
             break_callback: None,
             step_count: 0,
+            #[cfg(feature = "std")]
+            panic_guard: panic_guard::PanicGuard::default(),
         })
     }
 
@@ -210,13 +230,25 @@ impl<'a> World<'a> {
     /// [`ForceGenerator`](crate::ForceGenerator), a
     /// [`CollisionHandler`](crate::CollisionHandler) method, a
     /// [`Constraint`](crate::constraint::Constraint), a post-step callback or the
-    /// joint-break callback) unwinds out of `step` and leaves the world
-    /// half-stepped: the stages before the hook have run, those after it have not
-    /// (each hook's docs say what exactly). The world is still memory-safe, but its
-    /// state is one no uninterrupted run reaches, so its future differs from every
-    /// peer's. To recover, [`restore`](World::restore) the snapshot taken before
-    /// the step.
+    /// joint-break callback) unwinds out of `step`. With `std` and the panic
+    /// guard on (the default; see [`World::set_panic_guard`]) the world is first
+    /// restored to exactly its state before the step (a snapshot taken before
+    /// every step of a world with hooks; the hooks' own objects keep what they
+    /// changed). Without it the world is left half-stepped: the stages before the
+    /// hook have run, those after it have not (each hook's docs say what exactly).
+    /// It is still memory-safe, but its state is one no uninterrupted run
+    /// reaches, so its future differs from every peer's: [`restore`](World::restore)
+    /// the snapshot taken before the step.
     pub fn step(&mut self, dt: Scalar) -> Result<StepReport, Error> {
+        #[cfg(feature = "std")]
+        return self.step_guarded(dt);
+        #[cfg(not(feature = "std"))]
+        return self.step_stages_and_hooks(dt);
+    }
+
+    /// The step itself: the stages, then the broken joints and the post-step
+    /// callbacks.
+    fn step_stages_and_hooks(&mut self, dt: Scalar) -> Result<StepReport, Error> {
         let ctx = StepContext::new(&self.def, dt)?;
         self.post_step.state.refused = 0;
         let parts = StepParts {
@@ -324,7 +356,12 @@ impl<'a> World<'a> {
     pub fn add_force_generator(&mut self, g: impl Into<Generator<'a>>) -> Result<GeneratorHandle, Error> {
         let g = g.into();
         g.validate()?;
-        self.generators.insert(g).map_err(|_| Error::CapacityFull { what: "force generator" })
+        let custom = matches!(g, Generator::Custom(_));
+        let h = self.generators.insert(g).map_err(|_| Error::CapacityFull { what: "force generator" })?;
+        if custom {
+            self.arm_panic_guard();
+        }
+        Ok(h)
     }
 
     /// Removes a force generator and returns it.
@@ -350,6 +387,9 @@ impl<'a> World<'a> {
 
     /// Replaces the spatial index (the manual's custom indexing system).
     pub fn set_spatial_index(&mut self, index: Index<'a>) {
+        if matches!(index, Index::Custom(_)) {
+            self.arm_panic_guard();
+        }
         self.broad_phase.index = index;
     }
 
@@ -367,7 +407,9 @@ impl<'a> World<'a> {
         b: u32,
         handler: impl Into<Handler<'a>>,
     ) -> Result<(), Error> {
-        self.handlers.add(a, b, handler.into())
+        self.handlers.add(a, b, handler.into())?;
+        self.arm_panic_guard();
+        Ok(())
     }
 
     /// Removes and returns the handler for levels `a` and `b`, if any.
@@ -378,6 +420,9 @@ impl<'a> World<'a> {
     /// Replaces the default handler (used for level pairs without their own);
     /// `None` restores "resolve everything". Returns the previous one.
     pub fn set_default_collision_handler(&mut self, handler: Option<Handler<'a>>) -> Option<Handler<'a>> {
+        if handler.is_some() {
+            self.arm_panic_guard();
+        }
         self.handlers.set_default(handler)
     }
 
