@@ -1217,7 +1217,18 @@ impl<'w> Runner<'w> {
     fn step(&mut self, dt: Dt) -> Outcome {
         self.steps = self.steps.saturating_add(1);
         match self.world.step(dt.get()) {
-            Ok(r) => Outcome::Step(r),
+            Ok(r) => {
+                // A full store completes the step by dropping what does not fit
+                // (lowest keys kept): a world with larger stores differs from here.
+                if r.pairs_dropped > 0
+                    || r.arbiters_dropped > 0
+                    || r.post_step_refused > 0
+                    || r.post_step_dropped > 0
+                {
+                    CAPACITY_HIT.with(|c| c.set(true));
+                }
+                Outcome::Step(r)
+            }
             Err(e) => Outcome::Err(e),
         }
     }
@@ -1349,25 +1360,35 @@ impl<'w> Runner<'w> {
                     },
                     None => None,
                 };
+                // One op, one outcome: the fallible setters run first and the
+                // targets change only if they all succeeded, so an `Err` leaves the
+                // generator as it was (the property `scene_ops` checks).
                 let r = self.world.force_generator_mut(h.get(&self.generators)).and_then(|g| match g {
                     GeneratorMut::Linear(g) => {
+                        g.set_force(e.value.get())?;
                         if let Some(t) = t {
                             g.set_targets(t);
                         }
-                        g.set_force(e.value.get())
+                        Ok(())
                     }
                     GeneratorMut::Gravity(g) => {
+                        g.set_gravity(e.value.get())?;
                         if let Some(t) = t {
                             g.set_targets(t);
                         }
-                        g.set_gravity(e.value.get())
+                        Ok(())
                     }
                     GeneratorMut::GravityToPoint(g) => {
+                        let old_point = g.point();
+                        g.set_point(e.value.get())?;
+                        if let Err(err) = g.set_acceleration(e.scalar.get()) {
+                            g.set_point(old_point)?;
+                            return Err(err);
+                        }
                         if let Some(t) = t {
                             g.set_targets(t);
                         }
-                        g.set_point(e.value.get())?;
-                        g.set_acceleration(e.scalar.get())
+                        Ok(())
                     }
                     GeneratorMut::Custom(_) => Ok(()),
                 });
