@@ -65,7 +65,7 @@
 //!   math/               scalar/ (the number type; arith.rs: its operators) trig
 //!                       vector2 matrix22 rot rect
 //!   geometry/           polygon_path (hull, area, centroid, inertia) circle mass ray
-//!   arena.rs            fixed-capacity slots + generational handles
+//!   arena/              fixed-capacity slots; handle.rs: generational handles tagged with their world
 //!   body.rs body_def.rs bodies; their definition
 //!   world/              mod (World, step entry, hooks) def (WorldDef, validation)
 //!                       storage (Storage, WorldBuffers, Capacities) bodies joints
