@@ -461,7 +461,9 @@ fn sort_and_sweep_gives_the_same_world_as_brute_force() {
     };
     let mut brute = mk(Some(Index::BruteForce(arphysics::BruteForceIndex)));
     let mut auto = mk(None);
-    let mut sweep = mk(Some(Index::SortAndSweep(arphysics::index::SortAndSweepIndex::with_capacity(400))));
+    let mut sweep = mk(Some(Index::SortAndSweep(
+        arphysics::index::SortAndSweepIndex::with_capacity(400).expect("scratch"),
+    )));
     for step in 0..180 {
         brute.step(s(DT)).expect("step");
         auto.step(s(DT)).expect("step");

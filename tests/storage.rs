@@ -56,3 +56,13 @@ fn twenty_thousand_bodies_on_a_two_mebibyte_stack() {
         .expect("no stack overflow");
     assert_eq!(result, (20_000, 3));
 }
+
+#[test]
+fn a_sort_and_sweep_index_too_large_to_allocate_is_an_error_not_an_abort() {
+    use arphysics::index::SortAndSweepIndex;
+    assert!(matches!(
+        SortAndSweepIndex::with_capacity(usize::MAX),
+        Err(arphysics::Error::OutOfMemory { what: "sort-and-sweep scratch" })
+    ));
+    assert!(SortAndSweepIndex::with_capacity(1000).is_ok());
+}

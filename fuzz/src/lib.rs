@@ -1468,7 +1468,11 @@ impl<'w> Runner<'w> {
                     IndexSpec::Auto => Index::default(),
                     IndexSpec::BruteForce => Index::BruteForce(arphysics::BruteForceIndex),
                     IndexSpec::SortAndSweep(n) => {
-                        Index::SortAndSweep(SortAndSweepIndex::with_capacity(usize::from(*n % 48)))
+                        // At most 47 entries: the allocator never refuses them.
+                        match SortAndSweepIndex::with_capacity(usize::from(*n % 48)) {
+                            Ok(i) => Index::SortAndSweep(i),
+                            Err(e) => return Outcome::Err(e),
+                        }
                     }
                     IndexSpec::Custom { all_pairs, reverse, junk, skip_every } => {
                         Index::boxed(Box::new(FuzzIndex {

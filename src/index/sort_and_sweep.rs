@@ -30,10 +30,18 @@ impl<'a> SortAndSweepIndex<'a> {
     }
 
     /// An index for up to `capacity` proxies on the heap.
+    ///
+    /// # Errors
+    /// [`Error::OutOfMemory`](crate::Error::OutOfMemory) when the allocator
+    /// refuses the scratch (never an abort, whatever `capacity` is).
     #[cfg(feature = "alloc")]
-    #[must_use]
-    pub fn with_capacity(capacity: usize) -> Self {
-        Self::new(alloc::vec![0u32; capacity])
+    pub fn with_capacity(capacity: usize) -> Result<Self, crate::Error> {
+        let mut order = alloc::vec::Vec::new();
+        order
+            .try_reserve_exact(capacity)
+            .map_err(|_| crate::Error::OutOfMemory { what: "sort-and-sweep scratch" })?;
+        order.resize(capacity, 0u32);
+        Ok(Self::new(order))
     }
 }
 
