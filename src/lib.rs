@@ -106,7 +106,9 @@
 //!    that returns an error has changed nothing. [`Scalar`]'s operators saturate
 //!    (`a * b + c` is the same in debug and release, for the engine and for game
 //!    code alike; division by zero saturates too), and ranges are kept far from
-//!    saturation by validated inputs (see the limits below).
+//!    saturation by validated inputs (see the limits below). A game's hook that
+//!    panics is the game's panic; with `std` the world is first put back exactly
+//!    as it was before the step ([`World::set_panic_guard`]).
 //! 3. **No allocation in a step** (a test counts), and none required at all.
 //! 4. **Iteration order comes from simulation state alone**: bodies in slot order,
 //!    pairs in (lower slot, higher slot) order, hooks in registration order.
