@@ -183,7 +183,9 @@ pub fn proxies_may_touch(a: &Proxy, b: &Proxy) -> bool {
 mod tests {
     use super::*;
 
-    /// The pairs a sink of `cap` slots keeps from `reports`, and how many it dropped.
+    /// The pairs a sink of `cap` slots keeps from `reports`, and how many it
+    /// dropped. (These tests use `Vec`: they run with `std`, the default.)
+    #[cfg(feature = "std")]
     fn kept(cap: usize, reports: &[(u32, u32)]) -> (std::vec::Vec<(u32, u32)>, usize) {
         let mut buf = std::vec![(0u32, 0u32); cap];
         let accept = |_: u32, _: u32| true;
@@ -199,6 +201,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "std")]
     fn a_full_sink_keeps_the_lowest_distinct_keys_in_any_report_order() {
         let pairs: std::vec::Vec<(u32, u32)> = (0..12u32).map(|k| (k % 5, 5 + k)).collect();
         let mut lowest = pairs.clone();
@@ -218,6 +221,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "std")]
     fn duplicates_and_self_pairs_use_no_capacity() {
         let reports = [(1, 2), (2, 1), (3, 3), (1, 2), (0, 4), (4, 0), (1, 2)];
         assert_eq!(kept(2, &reports), (std::vec![(0, 4), (1, 2)], 0));
