@@ -1,0 +1,395 @@
+//! Issue 16's quality scenes: what the lane solver must do at least as well as
+//! today's, and better where today's falls short.
+//!
+//! * a row of five touching equal balls struck by a sixth (momentum transfer
+//!   along a chain of contacts);
+//! * 100 circles created at one point (push-out speed under extreme overlap);
+//! * a two-box stack of growing mass ratio (the heaviest box on top).
+//!
+//! Each scene prints its metrics beside the thresholds in the quality suite's
+//! format (`tests/quality.rs`), e.g.
+//!
+//! ```text
+//! quality cradle_5+1: far ball speed / striker speed 0.93 (≥ 0.8) [Box2D —]
+//! ```
+//!
+//! and then asserts every threshold, which are exactly issue 16's. Scenes today's
+//! solver misses are `#[ignore]`d with the measured value in the reason, so `main`
+//! stays green until the lane solver un-ignores them. Run with
+//! `cargo test --release --test quality_issue16 -- --include-ignored --nocapture`
+//! to see every line, and
+//! `cargo test --release --test quality_issue16 -- --ignored --nocapture mass_ratio_scan`
+//! for the largest mass ratio the two-box stack holds.
+
+use arphysics::{
+    BodyDef, BodyHandle, Capacities, GravityForceGenerator, PolygonPath, Rect, Scalar, Vector2, World,
+    WorldDef,
+};
+
+// ---- units and scene helpers -------------------------------------------------
+
+/// The time step of every scene (s).
+const DT: f64 = 1.0 / 60.0;
+/// Gravity (m/s², downwards).
+const G: f64 = 10.0;
+
+fn s(x: f64) -> Scalar {
+    Scalar::from_num(x)
+}
+
+fn v(x: f64, y: f64) -> Vector2 {
+    Vector2::new(s(x), s(y))
+}
+
+/// Steps for `seconds` of simulated time.
+fn steps(seconds: f64) -> usize {
+    (seconds / DT).round() as usize
+}
+
+/// A world of ±1000 m with room for `bodies` bodies, 8 paths and `contacts`
+/// candidate pairs and arbiters, with gravity (0, −10) when `gravity` is true.
+fn world(bodies: usize, contacts: usize, gravity: bool) -> World<'static> {
+    let bounds = Rect::from_corners(v(-1000.0, -1000.0), v(1000.0, 1000.0));
+    let mut w = World::with_capacities(
+        WorldDef::with_bounds(bounds),
+        Capacities { bodies, paths: 8, contacts, joints: 0, post_step_callbacks: 64 },
+    )
+    .expect("world");
+    if gravity {
+        w.add_force_generator(GravityForceGenerator::new(v(0.0, -G))).expect("gravity");
+    }
+    w
+}
+
+/// A static `width` × 2 m ground box whose top is y = 0.
+fn ground(w: &mut World<'static>, width: f64) -> BodyHandle {
+    let path = w.add_path(PolygonPath::rectangle(s(width), s(2.0)).expect("ground")).expect("path");
+    w.add_body(BodyDef::polygon(path).position(v(0.0, -1.0)).static_body()).expect("ground body")
+}
+
+/// A closed static box of 1 m thick walls, `width` × `height` inside, centred on
+/// x = 0 with its floor's top at y = 0.
+fn closed_box(w: &mut World<'static>, width: f64, height: f64) {
+    let mut wall = |wx: f64, wy: f64, x: f64, y: f64| {
+        let path = w.add_path(PolygonPath::rectangle(s(wx), s(wy)).expect("wall")).expect("path");
+        w.add_body(BodyDef::polygon(path).position(v(x, y)).static_body()).expect("wall body");
+    };
+    let (hw, outer) = (width / 2.0, width + 2.0);
+    wall(outer, 1.0, 0.0, -0.5);
+    wall(outer, 1.0, 0.0, height + 0.5);
+    wall(1.0, height, -hw - 0.5, height / 2.0);
+    wall(1.0, height, hw + 0.5, height / 2.0);
+}
+
+fn add(w: &mut World<'static>, def: BodyDef, x: f64, y: f64) -> BodyHandle {
+    w.add_body(def.position(v(x, y))).expect("body")
+}
+
+/// One step of [`DT`]; asserts nothing was dropped for lack of room, so a scene
+/// never passes by leaving contacts out.
+fn step(w: &mut World<'static>) {
+    let r = w.step(s(DT)).expect("step");
+    assert_eq!((r.pairs_dropped, r.arbiters_dropped), (0, 0), "contact buffers too small for the scene");
+}
+
+fn pos(w: &World<'static>, h: BodyHandle) -> (f64, f64) {
+    w.body(h).expect("body").position().to_f64()
+}
+
+fn vel(w: &World<'static>, h: BodyHandle) -> (f64, f64) {
+    w.body(h).expect("body").linear_velocity().to_f64()
+}
+
+fn speed(w: &World<'static>, h: BodyHandle) -> f64 {
+    let (x, y) = vel(w, h);
+    x.hypot(y)
+}
+
+// ---- metrics (the quality suite's format) ------------------------------------
+
+/// What a metric must satisfy.
+#[derive(Clone, Copy, Debug)]
+enum Limit {
+    /// value ≥ bound.
+    AtLeast(f64),
+    /// value ≤ bound.
+    AtMost(f64),
+    /// value < bound.
+    Below(f64),
+    /// Printed for information, not asserted.
+    Info,
+}
+
+impl Limit {
+    fn holds(self, value: f64) -> bool {
+        match self {
+            Self::AtLeast(b) => value >= b,
+            Self::AtMost(b) => value <= b,
+            Self::Below(b) => value < b,
+            Self::Info => true,
+        }
+    }
+
+    fn describe(self) -> String {
+        match self {
+            Self::AtLeast(b) => format!("≥ {}", num(b)),
+            Self::AtMost(b) => format!("≤ {}", num(b)),
+            Self::Below(b) => format!("< {}", num(b)),
+            Self::Info => "info".to_string(),
+        }
+    }
+}
+
+/// One measured number of one scene.
+#[derive(Clone, Debug)]
+struct Metric {
+    scene: &'static str,
+    what: String,
+    value: f64,
+    unit: &'static str,
+    limit: Limit,
+}
+
+impl Metric {
+    fn new(
+        scene: &'static str,
+        what: impl Into<String>,
+        value: f64,
+        unit: &'static str,
+        limit: Limit,
+    ) -> Self {
+        Self { scene, what: what.into(), value, unit, limit }
+    }
+
+    fn passes(&self) -> bool {
+        self.limit.holds(self.value)
+    }
+
+    /// `quality <scene>: <what> <value> <unit> (<limit>) [Box2D —]`.
+    fn line(&self) -> String {
+        let verdict = if self.passes() { "" } else { "  <-- FAILS" };
+        let value =
+            if self.unit.is_empty() { num(self.value) } else { format!("{} {}", num(self.value), self.unit) };
+        format!(
+            "quality {}: {} {value} ({}) [Box2D —]{verdict}",
+            self.scene,
+            self.what,
+            self.limit.describe()
+        )
+    }
+}
+
+/// A number printed compactly: 4 decimals, or scientific when tiny.
+fn num(x: f64) -> String {
+    if x != 0.0 && x.abs() < 1e-3 {
+        format!("{x:.3e}")
+    } else {
+        let t = format!("{x:.4}");
+        let t = t.trim_end_matches('0').trim_end_matches('.');
+        if t == "-0" {
+            "0".to_string()
+        } else {
+            t.to_string()
+        }
+    }
+}
+
+/// Prints every metric, then asserts they all hold (so one failure still shows
+/// all the numbers).
+fn check(metrics: &[Metric]) {
+    for m in metrics {
+        println!("{}", m.line());
+    }
+    let failed: Vec<String> = metrics.iter().filter(|m| !m.passes()).map(Metric::line).collect();
+    assert!(failed.is_empty(), "quality thresholds missed:\n{}", failed.join("\n"));
+}
+
+// ---- 1. a row of five balls struck by a sixth ----------------------------------
+
+/// The striker's speed (m/s).
+const STRIKER_SPEED: f64 = 4.0;
+
+/// Six equal balls (radius 0.5 m, density 1, restitution 1, friction 0), no
+/// gravity: five in a row exactly touching (centres 1 m apart on y = 0), the sixth
+/// 0.5 m to the left of the row moving right at 4 m/s. After 3 s (the collision
+/// is over after about 0.15 s; the far ball has travelled several metres clear),
+/// the far ball's speed over the striker's, and the largest speed any other ball
+/// kept over the striker's. An ideal elastic chain gives 1 and 0; issue 16 asks
+/// ≥ 0.8 and < 0.1.
+fn cradle() -> Vec<Metric> {
+    const SCENE: &str = "cradle_5+1";
+    let mut w = world(6, 24, false);
+    let ball = || BodyDef::circle(s(0.5)).friction(s(0.0)).restitution(s(1.0));
+    let striker = add(&mut w, ball().linear_velocity(v(STRIKER_SPEED, 0.0)), -1.5, 0.0);
+    let row: Vec<_> = (0..5).map(|i| add(&mut w, ball(), f64::from(i), 0.0)).collect();
+    for _ in 0..steps(3.0) {
+        step(&mut w);
+    }
+    let far = row[4];
+    let others = std::iter::once(striker).chain(row[..4].iter().copied());
+    let kept = others.map(|h| speed(&w, h)).fold(0.0, f64::max);
+    vec![
+        Metric::new(
+            SCENE,
+            "far ball speed / striker speed",
+            speed(&w, far) / STRIKER_SPEED,
+            "",
+            Limit::AtLeast(0.8),
+        ),
+        Metric::new(
+            SCENE,
+            "largest other ball speed / striker speed",
+            kept / STRIKER_SPEED,
+            "",
+            Limit::Below(0.1),
+        ),
+    ]
+}
+
+#[test]
+#[ignore = "issue 16: needs the lane solver; today the far ball leaves with 0.58 of the striker's speed (≥ 0.8) and another keeps 0.45 (< 0.1)"]
+fn quality_cradle_five_balls_struck_by_a_sixth() {
+    check(&cradle());
+}
+
+// ---- 2. 100 circles created at one point ----------------------------------------
+
+/// Circles in the heap.
+const HEAP: usize = 100;
+/// How deep two circles may still overlap once separated (m): twice Box2D v3's
+/// linear slop (0.005 m), the overlap a soft solver leaves in a resting pile.
+const RESTING_OVERLAP: f64 = 0.01;
+
+/// The deepest overlap among every pair of the given circles, all of radius `r` (m).
+fn deepest_overlap(w: &World<'static>, circles: &[BodyHandle], r: f64) -> f64 {
+    let p: Vec<_> = circles.iter().map(|&h| pos(w, h)).collect();
+    let mut worst: f64 = 0.0;
+    for i in 0..p.len() {
+        for j in i + 1..p.len() {
+            let d = (p[i].0 - p[j].0).hypot(p[i].1 - p[j].1);
+            worst = worst.max(2.0 * r - d);
+        }
+    }
+    worst
+}
+
+/// 100 circles of radius 0.5 (density 1, friction 0.6) created at one point on
+/// the floor (their lowest points touching it) of a closed static box 40 m wide
+/// and 20 m tall inside, gravity on, 10 s. The push-out speed is the world's
+/// default `contact_push_speed` (3 m/s); no body's centre may ever move faster
+/// than twice that. The box keeps the measure honest: on an open ground, circles
+/// flung off its edge fall freely and gain speed from gravity alone, and a body
+/// that starts on the floor cannot fall below its start, so gravity cannot add to
+/// a push-out speed. At 10 s every pair overlaps by at most [`RESTING_OVERLAP`].
+fn heap_at_one_point() -> Vec<Metric> {
+    const SCENE: &str = "100_circles_at_one_point";
+    const R: f64 = 0.5;
+    // Every pair overlaps at first: 4,950 pairs + 100 with the floor, and room
+    // for the walls.
+    let mut w = world(HEAP + 4, HEAP * HEAP / 2 + 4 * HEAP, true);
+    let push_speed = w.def().contact_push_speed.to_f64();
+    closed_box(&mut w, 40.0, 20.0);
+    let circles: Vec<_> = (0..HEAP).map(|_| add(&mut w, BodyDef::circle(s(R)), 0.0, R)).collect();
+    let (mut fastest, mut fastest_at): (f64, f64) = (0.0, 0.0);
+    let mut separated_at = None;
+    for i in 1..=steps(10.0) {
+        step(&mut w);
+        for &c in &circles {
+            let sp = speed(&w, c);
+            if sp > fastest {
+                (fastest, fastest_at) = (sp, i as f64 * DT);
+            }
+        }
+        if separated_at.is_none() && deepest_overlap(&w, &circles, R) <= RESTING_OVERLAP {
+            separated_at = Some(i as f64 * DT);
+        }
+    }
+    let spread = circles.iter().map(|&c| pos(&w, c).0.abs()).fold(0.0, f64::max);
+    vec![
+        Metric::new(SCENE, "largest speed at any step", fastest, "m/s", Limit::AtMost(2.0 * push_speed)),
+        Metric::new(SCENE, "largest speed reached at", fastest_at, "s", Limit::Info),
+        Metric::new(
+            SCENE,
+            "deepest pair overlap at 10 s",
+            deepest_overlap(&w, &circles, R),
+            "m",
+            Limit::AtMost(RESTING_OVERLAP),
+        ),
+        Metric::new(SCENE, "first separated at", separated_at.unwrap_or(f64::INFINITY), "s", Limit::Info),
+        Metric::new(SCENE, "pile width at 10 s (farthest centre from x = 0)", spread, "m", Limit::Info),
+    ]
+}
+
+// Heavy in debug builds (4,950 pairs at first): when un-ignored, ignore it in
+// debug as the other heavy scenes are (`cfg_attr(debug_assertions, ignore)`).
+#[test]
+#[ignore = "issue 16: needs the lane solver; today the largest speed is 45.3 m/s at 0.22 s (≤ 6)"]
+fn quality_hundred_circles_at_one_point_separate_gently() {
+    check(&heap_at_one_point());
+}
+
+// ---- 3. two-box stack mass ratio ------------------------------------------------
+
+/// How far the top box may sink in 10 s (m).
+const MAX_SINK: f64 = 0.05;
+
+/// A 1 m box of density 1 (1 kg) resting on the ground and a 1 m box of density
+/// `ratio` on it, both exactly touching, friction 0.6. Steps 10 s and returns
+/// (how far the top box's centre sank by 10 s, the most it sank at any step) (m).
+fn two_box_sink(ratio: f64) -> (f64, f64) {
+    let mut w = world(3, 12, true);
+    ground(&mut w, 100.0);
+    let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("path");
+    add(&mut w, BodyDef::polygon(unit), 0.0, 0.5);
+    let top = add(&mut w, BodyDef::polygon(unit).density(s(ratio)), 0.0, 1.5);
+    let y0 = pos(&w, top).1;
+    let mut deepest: f64 = 0.0;
+    for _ in 0..steps(10.0) {
+        step(&mut w);
+        deepest = deepest.max(y0 - pos(&w, top).1);
+    }
+    (y0 - pos(&w, top).1, deepest)
+}
+
+/// The ratios issue 16 asks about, smallest first.
+const RATIOS: [f64; 7] = [10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0, 10000.0];
+
+fn mass_ratio_100() -> Vec<Metric> {
+    const SCENE: &str = "two_box_stack";
+    let (sink, deepest) = two_box_sink(100.0);
+    vec![
+        Metric::new(SCENE, "100:1 top sink at 10 s", sink, "m", Limit::AtMost(MAX_SINK)),
+        Metric::new(SCENE, "100:1 top largest sink", deepest, "m", Limit::Info),
+    ]
+}
+
+#[test]
+#[cfg_attr(debug_assertions, ignore = "quality scene: run with --release")]
+fn quality_two_box_stack_holds_100_to_1() {
+    check(&mass_ratio_100());
+}
+
+/// Prints the sink of the two-box stack at each of [`RATIOS`] and the largest
+/// ratio that holds (sink at 10 s ≤ 0.05 m, and every smaller ratio holds too).
+/// Asserts nothing: the figure goes beside Box2D's in `benches/peers`' report.
+#[test]
+#[ignore = "prints the mass-ratio scan: run with --release -- --ignored --nocapture"]
+fn mass_ratio_scan() {
+    let mut largest = None;
+    let mut all_held = true;
+    println!("| top : bottom mass | sink at 10 s (m) | largest sink (m) | holds (≤ {MAX_SINK} m) |");
+    println!("|---|---|---|---|");
+    for ratio in RATIOS {
+        let (sink, deepest) = two_box_sink(ratio);
+        let holds = sink <= MAX_SINK;
+        all_held &= holds;
+        if all_held {
+            largest = Some(ratio);
+        }
+        println!("| {ratio}:1 | {} | {} | {} |", num(sink), num(deepest), if holds { "yes" } else { "no" });
+    }
+    match largest {
+        Some(r) => println!("largest ratio held: {r}:1"),
+        None => println!("largest ratio held: none of {RATIOS:?}"),
+    }
+}
