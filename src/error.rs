@@ -32,7 +32,8 @@ pub enum Error {
     },
     /// A position (or a body's extent around it) lies outside the world bounds.
     OutsideBounds,
-    /// The time step was zero, negative, or above [`MAX_TIME_STEP`](crate::MAX_TIME_STEP).
+    /// The time step was below [`MIN_TIME_STEP`](crate::MIN_TIME_STEP) (zero and
+    /// negative included) or above [`MAX_TIME_STEP`](crate::MAX_TIME_STEP).
     InvalidTimeStep,
     /// The handle refers to an object that was removed (or never existed in this world).
     StaleHandle,
@@ -88,7 +89,9 @@ impl fmt::Display for Error {
                 write!(f, "the convex hull has {count} vertices; at most {max} are allowed")
             }
             Self::OutsideBounds => f.write_str("the position lies outside the world bounds"),
-            Self::InvalidTimeStep => f.write_str("the time step must be positive and at most MAX_TIME_STEP"),
+            Self::InvalidTimeStep => f.write_str(
+                "the time step must be at least MIN_TIME_STEP (2^-16 s) and at most MAX_TIME_STEP (0.25 s)",
+            ),
             Self::StaleHandle => f.write_str("the handle refers to an object that no longer exists"),
             Self::CapacityFull { what } => write!(f, "the {what} store is full"),
             Self::InvalidOperation { what } => write!(f, "invalid operation: {what}"),

@@ -134,7 +134,7 @@
 //! | arbiter persistence | 0 – 256 steps ([`limits::MAX_ARBITER_PERSISTENCE`]) | separated arbiters expire |
 //! | speed | ≤ 2,048 m/s configurable, default 400 ([`WorldDef::max_linear_speed`]) | squared speeds exact |
 //! | spin | ≤ 256 rad/s, default 200, and ≤ π/4 per step | angular momentum in range |
-//! | time step | (0, 0.25] s ([`MAX_TIME_STEP`]) | bounded motion per step |
+//! | time step | [2^-16, 0.25] s ([`MIN_TIME_STEP`], [`MAX_TIME_STEP`]) | bounded motion per step; 1/sub-step ≤ 2^20 per second |
 //! | polygon | ≤ 8 vertices ([`geometry::MAX_POLYGON_VERTICES`]) | fixed-size, no allocation |
 //!
 //! # Coming from Box2D or Chipmunk
@@ -211,7 +211,7 @@ pub use geometry::{MassData, PolygonPath};
 pub use handler::{CallbackContext, CollisionHandler, FnHandler, Handler, PostStepFn};
 pub use hook::Hook;
 pub use index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};
-pub use limits::MAX_TIME_STEP;
+pub use limits::{MAX_TIME_STEP, MIN_TIME_STEP};
 pub use managed::ManagedSlice;
 pub use math::{Matrix22, Rect, Rot, Scalar, Transform, Vector2};
 pub use query::{QueryFilter, QueryShape, RayHit};

@@ -155,6 +155,18 @@ pub const MAX_SUBSTEPS: u32 = 16;
 /// physically meaningful and would let fast bodies move too far in one step.
 pub const MAX_TIME_STEP: Scalar = Scalar::lit("0.25");
 
+/// The shortest time step [`World::step`](crate::World::step) accepts: 2^-16 s
+/// (about 15 µs, 65,536 steps per second).
+///
+/// With up to [`MAX_SUBSTEPS`] (16 = 2^4) sub-steps the sub-step h is at least
+/// 2^-20 s, so its inverse 1/h ≤ 2^20 per second fits the solver's rate format
+/// with room to spare (the contact solver's 32-bit formats are derived from this
+/// bound, `docs/design/solver-lanes.md` §2.2, limit L3). Without it, 1/h would
+/// saturate Q32.32 for steps below about 2^-27 s and the speculative thresholds
+/// and softness would be silently wrong. No game steps this finely: 2^-16 s is
+/// 1,000 times shorter than a 60 Hz frame.
+pub const MIN_TIME_STEP: Scalar = Scalar::from_bits(1 << 16);
+
 /// The limits stage: speeds clamped to the world's maxima, bodies whose centre
 /// left the bounds frozen, bounding boxes refreshed. Returns how many bodies left
 /// the bounds this step.

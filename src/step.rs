@@ -46,8 +46,8 @@ use crate::error::Error;
 use crate::force::{self, Generators};
 use crate::geometry::PolygonPath;
 use crate::handler::{HandlerTable, PostStepQueue};
-use crate::limits::{self, MAX_TIME_STEP};
-use crate::math::scalar::{self, Scalar, ZERO};
+use crate::limits::{self, MAX_TIME_STEP, MIN_TIME_STEP};
+use crate::math::scalar::{self, Scalar};
 use crate::math::Rect;
 use crate::solver::{self, Softness, Solver};
 use crate::world::def::WorldDef;
@@ -131,9 +131,10 @@ impl StepContext {
     /// The context of a step of `dt` seconds in a world configured by `def`.
     ///
     /// # Errors
-    /// [`Error::InvalidTimeStep`] when `dt ≤ 0` or `dt > MAX_TIME_STEP`.
+    /// [`Error::InvalidTimeStep`] when `dt < MIN_TIME_STEP` (zero and negative
+    /// included) or `dt > MAX_TIME_STEP`.
     pub(crate) fn new(def: &WorldDef, dt: Scalar) -> Result<Self, Error> {
-        if dt <= ZERO || dt > MAX_TIME_STEP {
+        if dt < MIN_TIME_STEP || dt > MAX_TIME_STEP {
             return Err(Error::InvalidTimeStep);
         }
         let substeps = def.substeps.max(1);

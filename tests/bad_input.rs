@@ -4,7 +4,7 @@
 use arphysics::math::scalar;
 use arphysics::{
     BodyDef, BodyHandle, Error, GravityForceGenerator, PolygonPath, Rect, Rot, Scalar, Vector2, World,
-    WorldBuffers, WorldDef, MAX_TIME_STEP,
+    WorldBuffers, WorldDef, MAX_TIME_STEP, MIN_TIME_STEP,
 };
 
 fn s(x: f64) -> Scalar {
@@ -104,9 +104,29 @@ fn positions_outside_the_bounds_are_rejected() {
 
 #[test]
 fn bad_time_steps_are_rejected() {
-    for dt in [Scalar::ZERO, s(-0.1), MAX_TIME_STEP + Scalar::DELTA, Scalar::MAX, Scalar::MIN] {
+    for dt in [
+        Scalar::ZERO,
+        Scalar::DELTA,
+        MIN_TIME_STEP - Scalar::DELTA,
+        s(-0.1),
+        MAX_TIME_STEP + Scalar::DELTA,
+        Scalar::MAX,
+        Scalar::MIN,
+    ] {
         rejects(Error::InvalidTimeStep, |w, _| w.step(dt).map(drop));
     }
+}
+
+/// Limit L3 of the lane solver (`docs/design/solver-lanes.md` §2.2): the shortest
+/// accepted step is 2^-16 s, so the sub-step's inverse stays ≤ 2^20 per second.
+#[test]
+fn the_shortest_time_step_is_two_to_the_minus_sixteen() {
+    assert_eq!(MIN_TIME_STEP, Scalar::from_num(1.0 / 65_536.0));
+    let mut buffers = WorldBuffers::<8, 32>::new();
+    let (mut w, _) = scene(&mut buffers);
+    w.step(MIN_TIME_STEP).expect("the shortest step is accepted");
+    w.step(MIN_TIME_STEP + Scalar::DELTA).expect("a longer one too");
+    w.step(MAX_TIME_STEP).expect("and the longest");
 }
 
 #[test]

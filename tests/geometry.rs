@@ -441,6 +441,39 @@ fn mass_data_errors() {
 
 // ---------------------------------------------------------------- properties
 
+/// Limit L2 of the lane solver (`docs/design/solver-lanes.md` §2.2): a convex
+/// hull's bounding radius about its centroid r_b is at most √8 times its radius of
+/// gyration ρ_g = √(unit_inertia / area), so r_b² ≤ 8 · unit_inertia / area. The
+/// disc has √2, the square √3, and a thin triangle tends to √8 (its far vertex is
+/// 2L/3 from the centroid, ρ_g² = L²/18). A fact of geometry, checked on the
+/// engine's own numbers: `radius`, `area` and `unit_inertia` of every hull
+/// `PolygonPath::new` accepts, with `unit_inertia` allowed the rounding
+/// `check_polygon` allows it against the exact value (5e-10 m⁴ + 1e-11 relative;
+/// on millimetre hulls that allowance dominates, since their unit inertia is a
+/// few ulps). Returns r_b² · area / (8 · unit_inertia), ≤ 1 when it holds.
+fn check_radius_of_gyration(points: &[Vector2]) -> Option<f64> {
+    let poly = PolygonPath::new(points).ok()?;
+    let (r, area, inertia) = (f(poly.radius()), f(poly.area()), f(poly.unit_inertia()));
+    let slack = 5e-10 + inertia * 1e-11;
+    assert!(
+        r * r * area <= 8.0 * (inertia + slack) * (1.0 + 1e-9),
+        "r_b = {r} m > √8 · ρ_g = {} m (area {area} m², unit inertia {inertia} m⁴)",
+        (8.0 * inertia / area).sqrt()
+    );
+    Some(r * r * area / (8.0 * inertia))
+}
+
+/// A thin triangle comes close to the bound and stays under it; the square sits
+/// far inside (3/8 of it).
+#[test]
+fn radius_of_gyration_bound_is_nearly_reached_by_a_thin_triangle() {
+    let thin = [v(0.0, 0.0), v(60.0, 0.0), v(60.0, 0.5)];
+    let ratio = check_radius_of_gyration(&thin).expect("thin triangle");
+    assert!(ratio > 0.99 && ratio <= 1.0, "thin triangle r_b²/(8 ρ_g²) = {ratio}");
+    let square = check_radius_of_gyration(&[v(-1.0, -1.0), v(1.0, -1.0), v(1.0, 1.0), v(-1.0, 1.0)]);
+    assert_close(square.expect("square"), 3.0 / 8.0, 1e-9, "square r_b²/(8 ρ_g²)");
+}
+
 /// Grid points (lots of duplicates and collinear triples) at several scales and
 /// far from the origin.
 fn grid_points() -> impl Strategy<Value = Vec<Vector2>> {
@@ -479,6 +512,16 @@ proptest! {
     #[test]
     fn hull_of_free_points(points in free_points()) {
         check_any(&points);
+    }
+
+    #[test]
+    fn bounding_radius_is_at_most_root_eight_radii_of_gyration_grid(points in grid_points()) {
+        check_radius_of_gyration(&points);
+    }
+
+    #[test]
+    fn bounding_radius_is_at_most_root_eight_radii_of_gyration_free(points in free_points()) {
+        check_radius_of_gyration(&points);
     }
 
     #[test]

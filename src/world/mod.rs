@@ -220,7 +220,8 @@ impl<'a> World<'a> {
     /// high-water marks to size the capacities by.
     ///
     /// # Errors
-    /// [`Error::InvalidTimeStep`] when `dt ≤ 0` or `dt > MAX_TIME_STEP`; with
+    /// [`Error::InvalidTimeStep`] when `dt < MIN_TIME_STEP` (2^-16 s; zero and
+    /// negative included) or `dt > MAX_TIME_STEP`; with
     /// [`WorldDef::strict_capacity`], [`Error::CapacityFull`] when the candidate
     /// pairs or arbiters do not fit the contact buffers. On error the world is
     /// unchanged.
