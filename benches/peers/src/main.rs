@@ -3,16 +3,18 @@
 //! process, one engine after another, on one thread.
 //!
 //! ```text
-//! cargo run --release --manifest-path benches/peers/Cargo.toml -- [SCENE...] [--quick]
-//!     [--engines=arphysics,box2d,rapier] [--budget=SECONDS]
+//! cargo run --release --manifest-path benches/peers/Cargo.toml -- [SCENE...] [mass_ratio]
+//!     [--quick] [--engines=arphysics,box2d,rapier] [--budget=SECONDS]
 //! ```
 //!
 //! Per scene and engine: build, warm up, then time samples of consecutive steps and
 //! report the median ms/step. Full mode runs Box2D's step count for the scene (a tenth
 //! as warm-up, the rest as 9 samples); `--quick` runs 5 warm-up steps and 5 samples
 //! of 5 steps. An engine whose projected time for a scene exceeds the budget (default
-//! 300 s) runs fewer samples, or none, and the table says so. The progress log goes
-//! to stderr; the report (markdown) to stdout.
+//! 300 s) runs fewer samples, or none, and the table says so. `mass_ratio` (untimed)
+//! runs issue 16's two-box stack at mass ratios 10:1 to 10,000:1 in each engine and
+//! reports the largest each holds. With no scene named, everything runs. The
+//! progress log goes to stderr; the report (markdown) to stdout.
 
 mod engines;
 mod scenes;
@@ -302,19 +304,21 @@ fn ratio(a: Option<f64>, b: Option<f64>) -> String {
 }
 
 fn memory_report(large: &Scene) {
-    use arphysics::{Arbiter, Body, ContactConstraint, Joint, PolygonPath, Proxy, Slot, SolverBody};
+    // The solver's records are internal; `Storage` publishes the bytes per slot,
+    // and the solver's share is what remains beside the public records.
+    use arphysics::{Arbiter, Body, Proxy, Slot, Storage};
     use std::mem::size_of;
     let body = size_of::<Slot<Body>>();
     // Broad-phase scratch: the proxy, its body slot, the sweep order.
     let proxy = size_of::<Proxy>() + 2 * size_of::<u32>();
     let arbiter = size_of::<Arbiter>();
     let pair = size_of::<(u32, u32)>();
-    let path = size_of::<Slot<PolygonPath>>();
-    let joint = size_of::<Slot<Joint>>() + pair;
-    let solver_body = size_of::<SolverBody>();
-    let constraint = size_of::<ContactConstraint>();
-    let per_body = body + proxy + solver_body;
-    let per_contact = 2 * arbiter + pair + constraint;
+    let path = Storage::BYTES_PER_PATH;
+    let joint = Storage::BYTES_PER_JOINT;
+    let per_body = Storage::BYTES_PER_BODY;
+    let per_contact = Storage::BYTES_PER_CONTACT;
+    let solver_body = per_body.saturating_sub(body + proxy);
+    let constraint = per_contact.saturating_sub(2 * arbiter + pair);
     let c = engines::ar::capacities(large);
     let total = c.bodies * per_body + c.paths * path + c.contacts * per_contact + c.joints * joint;
     let world = size_of::<arphysics::World<'static>>();
@@ -323,15 +327,15 @@ fn memory_report(large: &Scene) {
     println!("|---|---|");
     println!("| `Slot<Body>` | {body} |");
     println!("| broad-phase scratch per body (`Proxy` + body slot `u32` + sweep order `u32`) | {proxy} |");
-    println!("| solver's copy of the body (`SolverBody`) | {solver_body} |");
-    println!("| **per body** | **{per_body}** |");
+    println!("| solver's copy of the body (the rest of `Storage::BYTES_PER_BODY`) | {solver_body} |");
+    println!("| **per body** (`Storage::BYTES_PER_BODY`) | **{per_body}** |");
     println!("| `Arbiter` | {arbiter} |");
-    println!("| solver's contact constraint (`ContactConstraint`) | {constraint} |");
+    println!("| solver's contact constraint (the rest of `Storage::BYTES_PER_CONTACT`) | {constraint} |");
     println!(
         "| **per contact** (2 × `Arbiter`: current and next buffer, + candidate pair + constraint) | **{per_contact}** |"
     );
-    println!("| `Slot<PolygonPath>` (per shared path) | {path} |");
-    println!("| per joint (`Slot<Joint>` + pair) | {joint} |");
+    println!("| per shared polygon path (`Storage::BYTES_PER_PATH`) | {path} |");
+    println!("| per joint (`Storage::BYTES_PER_JOINT`) | {joint} |");
     println!("| `World` itself (inline hooks, handles to the stores) | {world} |");
     println!(
         "\nlarge_pyramid storage: Capacities {{ bodies: {}, paths: {}, contacts: {}, joints: {} }} → \
@@ -348,15 +352,94 @@ fn memory_report(large: &Scene) {
     );
 }
 
+/// The two-box stack at every ratio of [`scenes::MASS_RATIOS`]: the top box's sink
+/// after [`scenes::MASS_RATIO_STEPS`] steps (m), or why the run failed.
+fn mass_ratio_scan<E: Engine>() -> Vec<Result<f64, String>> {
+    scenes::MASS_RATIOS
+        .iter()
+        .map(|&ratio| {
+            let scene = scenes::two_box_stack(ratio);
+            let mut e = E::build(&scene)?;
+            let y0 = e.body(scene.top_body)?.y;
+            for _ in 0..scene.steps {
+                e.step()?;
+            }
+            Ok(y0 - e.body(scene.top_body)?.y)
+        })
+        .collect()
+}
+
+/// The largest ratio that holds with every smaller one holding too, if any.
+fn largest_ratio_held(sinks: &[Result<f64, String>]) -> Option<f64> {
+    scenes::MASS_RATIOS
+        .iter()
+        .zip(sinks)
+        .take_while(|(_, s)| s.as_ref().is_ok_and(|&s| s <= scenes::MASS_RATIO_MAX_SINK))
+        .last()
+        .map(|(r, _)| *r)
+}
+
+fn mass_ratio_report(engines: &[Which]) {
+    let scans: Vec<(Which, Vec<Result<f64, String>>)> = engines
+        .iter()
+        .map(|&w| {
+            eprintln!("two_box_stack / {}: {} ratios…", w.label(), scenes::MASS_RATIOS.len());
+            let scan = match w {
+                Which::Arphysics => mass_ratio_scan::<Ar>(),
+                Which::Box2d => mass_ratio_scan::<B2>(),
+                Which::Rapier => mass_ratio_scan::<Rp>(),
+            };
+            (w, scan)
+        })
+        .collect();
+    println!(
+        "\n## Quality: two-box stack mass ratio (issue 16)\n\n\
+         A 1 kg box of 1 m on the ground, a 1 m box of `ratio` kg on it, friction 0.6, {} steps \
+         (10 s): the top box's sink (m). It holds when the sink is ≤ {} m.\n",
+        scenes::MASS_RATIO_STEPS,
+        scenes::MASS_RATIO_MAX_SINK
+    );
+    let header: Vec<&str> = scans.iter().map(|(w, _)| w.label()).collect();
+    println!("| top : bottom mass | {} |", header.join(" | "));
+    println!("|---|{}", "---|".repeat(scans.len()));
+    for (i, ratio) in scenes::MASS_RATIOS.iter().enumerate() {
+        let cells: Vec<String> = scans
+            .iter()
+            .map(|(_, scan)| match scan.get(i) {
+                Some(Ok(sink)) => {
+                    let mark = if *sink <= scenes::MASS_RATIO_MAX_SINK { "" } else { " ✗" };
+                    format!("{sink:.4}{mark}")
+                }
+                Some(Err(e)) => format!("error: {e}"),
+                None => "–".to_owned(),
+            })
+            .collect();
+        println!("| {ratio}:1 | {} |", cells.join(" | "));
+    }
+    let held: Vec<String> = scans
+        .iter()
+        .map(|(_, scan)| largest_ratio_held(scan).map_or_else(|| "none".to_owned(), |r| format!("{r}:1")))
+        .collect();
+    println!("| **largest ratio held** | {} |", held.join(" | "));
+}
+
 struct Args {
     scenes: Vec<String>,
+    /// Run the two-box stack mass-ratio scan (`mass_ratio`; on by default).
+    mass_ratio: bool,
     quick: bool,
     engines: Vec<Which>,
     budget_s: f64,
 }
 
 fn parse_args() -> Result<Args, String> {
-    let mut a = Args { scenes: Vec::new(), quick: false, engines: Which::ALL.to_vec(), budget_s: 300.0 };
+    let mut a = Args {
+        scenes: Vec::new(),
+        mass_ratio: false,
+        quick: false,
+        engines: Which::ALL.to_vec(),
+        budget_s: 300.0,
+    };
     for arg in std::env::args().skip(1) {
         if arg == "--quick" {
             a.quick = true;
@@ -371,12 +454,15 @@ fn parse_args() -> Result<Args, String> {
             return Err(String::new());
         } else if scenes::NAMES.contains(&arg.as_str()) {
             a.scenes.push(arg);
+        } else if arg == "mass_ratio" {
+            a.mass_ratio = true;
         } else {
             return Err(format!("unknown argument {arg:?}"));
         }
     }
-    if a.scenes.is_empty() {
+    if a.scenes.is_empty() && !a.mass_ratio {
         a.scenes = scenes::NAMES.iter().map(|s| (*s).to_owned()).collect();
+        a.mass_ratio = true;
     }
     Ok(a)
 }
@@ -389,8 +475,8 @@ fn main() {
                 eprintln!("{e}");
             }
             eprintln!(
-                "usage: peers [SCENE...] [--quick] [--engines=arphysics,box2d,rapier] [--budget=SECONDS]\n\
-                 scenes: {}",
+                "usage: peers [SCENE...] [mass_ratio] [--quick] [--engines=arphysics,box2d,rapier] [--budget=SECONDS]\n\
+                 scenes: {}; mass_ratio: the two-box stack scan (all run when none is named)",
                 scenes::NAMES.join(", ")
             );
             std::process::exit(2);
@@ -534,6 +620,10 @@ fn main() {
         for (_, w, q) in &quality {
             println!("| {} | {} | {:+.4} | {:.4} | {:.4} |", w.label(), q.steps, q.drift, q.sag, q.max_speed);
         }
+    }
+
+    if args.mass_ratio {
+        mass_ratio_report(&args.engines);
     }
 
     if let Some(large) = scenes::by_name("large_pyramid") {

@@ -260,6 +260,38 @@ fn joint_grid() -> Scene {
     }
 }
 
+/// Top-to-bottom mass ratios the two-box stack is tried at, smallest first
+/// (issue 16).
+pub const MASS_RATIOS: [f64; 7] = [10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0, 10000.0];
+/// How far the top box may sink for the stack to hold, m (issue 16).
+pub const MASS_RATIO_MAX_SINK: f64 = 0.05;
+/// Steps the stack is run for: 10 s.
+pub const MASS_RATIO_STEPS: usize = 600;
+
+/// Issue 16's two-box stack (as `tests/quality_issue16.rs` builds it): a 1 m box
+/// of density 1 (1 kg) resting on a static 100 × 2 m ground and a 1 m box of
+/// density `ratio` resting on it, both exactly touching, friction 0.6. The
+/// tracked body is the top box; it holds when it sinks at most
+/// [`MASS_RATIO_MAX_SINK`] in [`MASS_RATIO_STEPS`] steps.
+#[must_use]
+pub fn two_box_stack(ratio: f64) -> Scene {
+    let unit = ShapeDesc::Box { hx: 0.5, hy: 0.5 };
+    let bodies = vec![
+        ground_box(50.0, 1.0, 0.0, -1.0),
+        dynamic(unit.clone(), 0.0, 0.5),
+        BodyDesc { density: ratio, ..dynamic(unit, 0.0, 1.5) },
+    ];
+    Scene {
+        name: "two_box_stack",
+        bodies,
+        joints: Vec::new(),
+        steps: MASS_RATIO_STEPS,
+        bounds: (-100.0, -20.0, 100.0, 100.0),
+        contacts_per_body: 4,
+        top_body: 2,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
