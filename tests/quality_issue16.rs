@@ -168,14 +168,15 @@ impl Metric {
     /// `quality <scene>: <what> <value> <unit> (<limit>) [Box2D —]`.
     fn line(&self) -> String {
         let verdict = if self.passes() { "" } else { "  <-- FAILS" };
-        let value =
-            if self.unit.is_empty() { num(self.value) } else { format!("{} {}", num(self.value), self.unit) };
-        format!(
-            "quality {}: {} {value} ({}) [Box2D —]{verdict}",
-            self.scene,
-            self.what,
-            self.limit.describe()
-        )
+        // A NaN value marks a metric whose text says it all.
+        let what = if self.value.is_nan() {
+            self.what.clone()
+        } else if self.unit.is_empty() {
+            format!("{} {}", self.what, num(self.value))
+        } else {
+            format!("{} {} {}", self.what, num(self.value), self.unit)
+        };
+        format!("quality {}: {what} ({}) [Box2D —]{verdict}", self.scene, self.limit.describe())
     }
 }
 
@@ -228,7 +229,18 @@ fn cradle() -> Vec<Metric> {
     let far = row[4];
     let others = std::iter::once(striker).chain(row[..4].iter().copied());
     let kept = others.map(|h| speed(&w, h)).fold(0.0, f64::max);
+    let velocities: Vec<String> = std::iter::once(striker)
+        .chain(row.iter().copied())
+        .map(|h| format!("{:+.3}", vel(&w, h).0 / STRIKER_SPEED))
+        .collect();
     vec![
+        Metric::new(
+            SCENE,
+            format!("x-velocities / striker speed, striker first: {}", velocities.join(" ")),
+            f64::NAN,
+            "",
+            Limit::Info,
+        ),
         Metric::new(
             SCENE,
             "far ball speed / striker speed",
