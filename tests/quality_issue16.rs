@@ -376,7 +376,6 @@ fn mass_ratio_100() -> Vec<Metric> {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "quality scene: run with --release")]
 fn quality_two_box_stack_holds_100_to_1() {
     check(&mass_ratio_100());
 }
