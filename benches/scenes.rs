@@ -147,6 +147,14 @@ fn joint_grid() -> Result<World<'static>, arphysics::Error> {
     Ok(w)
 }
 
+/// This thread's CPU time so far (ns), from Linux's `/proc/thread-self/schedstat`
+/// (`None` elsewhere). On a shared machine it leaves out the time other
+/// processes held the core, so it is steadier than the wall clock.
+fn thread_cpu_ns() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    text.split_whitespace().next()?.parse().ok()
+}
+
 fn main() -> Result<(), arphysics::Error> {
     let filter: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
     let scenes: [(&str, Build, usize, usize); 5] = [
@@ -166,22 +174,29 @@ fn main() -> Result<(), arphysics::Error> {
             w.step(dt)?;
         }
         let mut times = Vec::new();
+        let mut cpu = Vec::new();
         for _ in 0..samples {
-            let t = Instant::now();
+            let (t, c) = (Instant::now(), thread_cpu_ns());
             for _ in 0..steps {
                 w.step(dt)?;
             }
             times.push(t.elapsed().as_secs_f64() * 1000.0 / steps as f64);
+            if let (Some(c0), Some(c1)) = (c, thread_cpu_ns()) {
+                cpu.push(c1.saturating_sub(c0) as f64 / 1e6 / steps as f64);
+            }
         }
         times.sort_by(f64::total_cmp);
+        cpu.sort_by(f64::total_cmp);
+        let cpu_median = cpu.get(cpu.len() / 2).map_or(String::new(), |c| format!(", thread CPU {c:.3}"));
         println!(
-            "{name:>14}: {:>5} bodies, {:>6} contact pairs, {:>5} joints: median {:.3} ms/step (min {:.3}, max {:.3})",
+            "{name:>14}: {:>5} bodies, {:>6} contact pairs, {:>5} joints: median {:.3} ms/step (min {:.3}, max {:.3}){cpu_median}, state hash {:016x}",
             w.body_count(),
             w.arbiters().count(),
             w.joints().count(),
             times[times.len() / 2],
             times[0],
             times[times.len() - 1],
+            w.state_hash(),
         );
     }
     // Storage per body slot (the body, its broad-phase entries and the solver's
