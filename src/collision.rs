@@ -191,7 +191,9 @@ pub(crate) fn broad_phase(
     let (reported, dropped) = (sink.len, sink.dropped);
     // The sink keeps body-slot pairs; sort them into key order.
     let reported = pairs.get_mut(..reported).unwrap_or(&mut []);
-    reported.sort_unstable();
+    // The same order as the tuples' (lower slot, then higher), compared as one
+    // 64-bit key.
+    reported.sort_unstable_by_key(|&(a, b)| (u64::from(a) << 32) | u64::from(b));
     let unique = dedup_sorted(reported);
     if ctx.strict_capacity {
         // The merge writes one arbiter per key of the union; check it fits first.
