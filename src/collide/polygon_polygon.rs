@@ -176,21 +176,53 @@ fn transform_vertices(poly: &PolygonPath, xf: Transform) -> [Vector2; MAX_POLYGO
 /// distance of `other`'s deepest vertex beyond the face. The first face (lowest
 /// index) wins ties. `None` when either polygon has no vertices.
 ///
-/// `towards` is the other polygon's origin in `poly`'s frame. It only chooses
-/// the order the faces are scanned in, starting with the face that looks
-/// towards it, which is usually the answer: a face replaces the best only when
-/// its deepest vertex is shallower (or as shallow with a lower index), so each
-/// later face's scan stops at its first vertex at or below the best, and most
-/// faces of resting boxes stop at once. The result is the same for every start.
+/// A box in its own frame (normals −y, +x, +y, −x, as
+/// [`PolygonPath::rectangle`] makes them) takes a straight-line full scan: each
+/// distance is one subtraction, and without early exits there is nothing to
+/// mispredict. Any other polygon is scanned face by face from the face looking
+/// towards `towards` (the other polygon's origin in `poly`'s frame), which is
+/// usually the answer: a face replaces the best only when its deepest vertex is
+/// shallower (or as shallow with a lower index), so each later face's scan
+/// stops at its first vertex at or below the best. The result is the same for
+/// every start and on both paths (a test holds both to the definition).
 fn max_separation(poly: &PolygonPath, other: &[Vector2], towards: Vector2) -> Option<(usize, Scalar)> {
     if other.is_empty() {
         return None;
     }
     let (vertices, normals) = (poly.vertices(), poly.normals());
     let count = vertices.len().min(normals.len());
+    let mut dirs = [Direction::PosX; MAX_POLYGON_VERTICES];
+    for (d, n) in dirs.iter_mut().zip(normals.iter().take(count)) {
+        *d = Direction::of(*n);
+    }
+    let dirs = dirs.get(..count).unwrap_or(&[]);
+    if let ([v0, v1, v2, v3], [Direction::NegY, Direction::PosX, Direction::PosY, Direction::NegX]) =
+        (vertices, dirs)
+    {
+        // A box in its own frame, as `PolygonPath::rectangle` makes it: each
+        // face's distance is a subtraction (the dot product by an axis, its
+        // `+ 0` changing nothing), so the plain full scan, straight-line and
+        // without early exits or a start face, is the cheapest; it is the
+        // definition itself (the first of equal faces wins).
+        let z = Scalar::ZERO;
+        let (mut d0, mut d1, mut d2, mut d3) = (Scalar::MAX, Scalar::MAX, Scalar::MAX, Scalar::MAX);
+        for w in other {
+            d0 = d0.min(z + -(w.y - v0.y));
+            d1 = d1.min((w.x - v1.x) + z);
+            d2 = d2.min(z + (w.y - v2.y));
+            d3 = d3.min(-(w.x - v3.x) + z);
+        }
+        let mut best = (0, d0);
+        for (i, d) in [(1, d1), (2, d2), (3, d3)] {
+            if d > best.1 {
+                best = (i, d);
+            }
+        }
+        return Some(best);
+    }
     let mut start: Option<(usize, Scalar)> = None;
-    for (i, n) in normals.iter().enumerate().take(count) {
-        let along = Direction::of(*n).dot(towards);
+    for (i, d) in dirs.iter().enumerate() {
+        let along = d.dot(towards);
         if start.is_none_or(|(_, a)| along > a) {
             start = Some((i, along));
         }
@@ -199,8 +231,8 @@ fn max_separation(poly: &PolygonPath, other: &[Vector2], towards: Vector2) -> Op
     let mut best: Option<(usize, Scalar)> = None;
     for k in 0..count {
         let i = if start + k < count { start + k } else { start + k - count };
-        let (Some(v), Some(n)) = (vertices.get(i), normals.get(i)) else { continue };
-        let deepest = match Direction::of(*n) {
+        let (Some(v), Some(d)) = (vertices.get(i), dirs.get(i)) else { continue };
+        let deepest = match *d {
             Direction::PosX => deepest_vertex(other, best, i, |w| (w.x - v.x) + Scalar::ZERO),
             Direction::NegX => deepest_vertex(other, best, i, |w| -(w.x - v.x) + Scalar::ZERO),
             Direction::PosY => deepest_vertex(other, best, i, |w| Scalar::ZERO + (w.y - v.y)),
@@ -465,6 +497,11 @@ mod tests {
 
     #[test]
     fn max_separation_is_the_first_best_face_from_any_start() {
+        // The rectangles take the box path, the triangle the general one.
+        let unit = rect(1, 1);
+        assert_eq!(unit.normals().len(), 4);
+        let dirs: [Direction; 4] = core::array::from_fn(|i| Direction::of(unit.normals()[i]));
+        assert!(matches!(dirs, [Direction::NegY, Direction::PosX, Direction::PosY, Direction::NegX]));
         let tri = polygon(&[v("0", "-0.2"), v("1", "1"), v("-1", "1")]);
         let shapes = [rect(1, 1), rect(4, 2), tri, rect(2, 2)];
         let mut x = 0x0DDB_1A5E_5BAD_5EEDu64;
