@@ -455,7 +455,7 @@ fn proxy(ctx: &StepContext, b: &Body) -> Proxy {
 ///
 /// Speeds are taken at most at the world's limits, which the step enforces: a
 /// velocity a game set far above them cannot inflate the margins.
-#[inline]
+#[inline(always)]
 fn motion_bound(ctx: &StepContext, b: &Body) -> Scalar {
     if !b.moved_by_step() {
         return Scalar::ZERO;
