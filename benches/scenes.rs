@@ -4,6 +4,9 @@
 //! machine the median is the figure to quote), plus memory.
 //!
 //! Run all: `cargo bench --bench scenes`; one: `cargo bench --bench scenes -- pyramid_20`.
+//! `-- --narrow` adds the narrow phase timed alone; `-- --quick` takes one
+//! sample per scene (for `valgrind --tool=callgrind`, whose instruction counts
+//! per stage do not depend on the load of a shared machine).
 
 use std::time::Instant;
 
@@ -147,8 +150,78 @@ fn joint_grid() -> Result<World<'static>, arphysics::Error> {
     Ok(w)
 }
 
+/// This thread's CPU time so far (ns), from Linux's `/proc/thread-self/schedstat`
+/// (`None` elsewhere). On a shared machine it leaves out the time other
+/// processes held the core, so it is steadier than the wall clock.
+fn thread_cpu_ns() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    text.split_whitespace().next()?.parse().ok()
+}
+
+/// The narrow phase alone: every touching pair of `w` (its arbiters, bodies in
+/// arbiter order) collided `rounds` times per sample with the public collide
+/// functions, the speculative distance as margin. Prints ns per pair (thread
+/// CPU time, median and min of the samples). A steadier figure for the
+/// narrow phase than its share of a step on a shared machine.
+fn narrow_phase(name: &str, w: &World<'_>) -> Result<(), arphysics::Error> {
+    use arphysics::collide::{collide_circles, collide_polygon_circle, collide_polygons, Manifold};
+    use arphysics::math::Transform;
+    enum Part<'p> {
+        Circle(Scalar),
+        Polygon(&'p PolygonPath),
+    }
+    let part = |b: &Body| -> Result<Part<'_>, arphysics::Error> {
+        Ok(match b.shape() {
+            arphysics::Shape::Circle { radius } => Part::Circle(radius),
+            arphysics::Shape::Polygon(p) => Part::Polygon(w.path(p)?),
+        })
+    };
+    let mut pairs: Vec<(Part<'_>, Transform, Part<'_>, Transform)> = Vec::new();
+    for arb in w.arbiters() {
+        let (a, b) = (w.body(arb.body_a())?, w.body(arb.body_b())?);
+        pairs.push((part(a)?, a.transform(), part(b)?, b.transform()));
+    }
+    let margin = arphysics::limits::SPECULATIVE_DISTANCE;
+    let collide = |(a, xa, b, xb): &(Part<'_>, Transform, Part<'_>, Transform)| -> Manifold {
+        match (a, b) {
+            (Part::Circle(ra), Part::Circle(rb)) => collide_circles(*ra, *xa, *rb, *xb, margin),
+            (Part::Polygon(pa), Part::Polygon(pb)) => collide_polygons(pa, *xa, pb, *xb, margin),
+            (Part::Polygon(pa), Part::Circle(rb)) => collide_polygon_circle(pa, *xa, *rb, *xb, margin),
+            (Part::Circle(ra), Part::Polygon(pb)) => collide_polygon_circle(pb, *xb, *ra, *xa, margin),
+        }
+    };
+    // About a million collisions per sample, so that the CPU clock's tick
+    // granularity (schedstat is updated at ticks and switches) is negligible.
+    let (rounds, samples) = ((1_000_000 / pairs.len().max(1)).max(1), 9);
+    let mut cpu = Vec::new();
+    let mut points = 0usize;
+    for _ in 0..samples {
+        let Some(c0) = thread_cpu_ns() else { return Ok(()) };
+        for _ in 0..rounds {
+            for pair in &pairs {
+                points += std::hint::black_box(collide(std::hint::black_box(pair))).count;
+            }
+        }
+        let c1 = thread_cpu_ns().unwrap_or(c0);
+        cpu.push(c1.saturating_sub(c0) as f64 / (rounds * pairs.len().max(1)) as f64);
+    }
+    cpu.sort_by(f64::total_cmp);
+    println!(
+        "{name:>14}: narrow phase alone, {} pairs: median {:.1} ns/pair (min {:.1}), {} points",
+        pairs.len(),
+        cpu[cpu.len() / 2],
+        cpu[0],
+        points / (rounds * samples)
+    );
+    Ok(())
+}
+
 fn main() -> Result<(), arphysics::Error> {
     let filter: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
+    // `--narrow`: also time the narrow phase alone (large_pyramid and rain).
+    // `--quick`: one sample per scene (for instruction counts under valgrind).
+    let narrow = std::env::args().any(|a| a == "--narrow");
+    let quick = std::env::args().any(|a| a == "--quick");
     let scenes: [(&str, Build, usize, usize); 5] = [
         ("pyramid_20", pyramid_20, 60, 15),
         ("rain", rain, 30, 7),
@@ -165,24 +238,35 @@ fn main() -> Result<(), arphysics::Error> {
         for _ in 0..30 {
             w.step(dt)?;
         }
+        let samples = if quick { 1 } else { samples };
         let mut times = Vec::new();
+        let mut cpu = Vec::new();
         for _ in 0..samples {
-            let t = Instant::now();
+            let (t, c) = (Instant::now(), thread_cpu_ns());
             for _ in 0..steps {
                 w.step(dt)?;
             }
             times.push(t.elapsed().as_secs_f64() * 1000.0 / steps as f64);
+            if let (Some(c0), Some(c1)) = (c, thread_cpu_ns()) {
+                cpu.push(c1.saturating_sub(c0) as f64 / 1e6 / steps as f64);
+            }
         }
         times.sort_by(f64::total_cmp);
+        cpu.sort_by(f64::total_cmp);
+        let cpu_median = cpu.get(cpu.len() / 2).map_or(String::new(), |c| format!(", thread CPU {c:.3}"));
         println!(
-            "{name:>14}: {:>5} bodies, {:>6} contact pairs, {:>5} joints: median {:.3} ms/step (min {:.3}, max {:.3})",
+            "{name:>14}: {:>5} bodies, {:>6} contact pairs, {:>5} joints: median {:.3} ms/step (min {:.3}, max {:.3}){cpu_median}, state hash {:016x}",
             w.body_count(),
             w.arbiters().count(),
             w.joints().count(),
             times[times.len() / 2],
             times[0],
             times[times.len() - 1],
+            w.state_hash(),
         );
+        if narrow && (name == "large_pyramid" || name == "rain") {
+            narrow_phase(name, &w)?;
+        }
     }
     // Storage per body slot (the body, its broad-phase entries and the solver's
     // copy) and per contact slot (two arbiter buffers, the candidate pair and

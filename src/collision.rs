@@ -14,14 +14,15 @@ use crate::hook::Hook;
 
 use crate::arbiter::{mix_friction, mix_restitution, Arbiter, ArbiterState, ArbiterStore};
 use crate::arena::Arena;
-use crate::body::{Body, BodyType, Shape};
+use crate::body::{Body, BodyHandle, BodyType, Shape};
 use crate::collide::{collide_circles, collide_polygon_circle, collide_polygons, Manifold};
 use crate::constraint::{Joint, JointMarker};
 use crate::error::Error;
 use crate::geometry::PolygonPath;
 use crate::handler::{CallbackContext, HandlerTable, PostStepQueue};
 use crate::index::{
-    dedup_sorted, BruteForceIndex, PairSink, Proxy, SortAndSweepIndex, SpatialIndex, AUTO_THRESHOLD,
+    dedup_sorted, sweep_sorted, BruteForceIndex, PairSink, Proxy, SortAndSweepIndex, SpatialIndex,
+    AUTO_THRESHOLD,
 };
 use crate::limits::SPECULATIVE_DISTANCE;
 use crate::math::Scalar;
@@ -128,36 +129,58 @@ pub(crate) fn broad_phase(
     }
     let held_pairs = bp.joint_pairs.get_mut(..held).unwrap_or(&mut []);
     held_pairs.sort_unstable();
-    let mut n = 0usize;
-    for (h, b) in bodies.iter() {
-        if b.out_of_bounds {
-            continue;
-        }
-        let (Some(p), Some(pb)) = (bp.proxies.get_mut(n), bp.proxy_bodies.get_mut(n)) else {
-            return Err(Error::CapacityFull { what: "broad-phase proxy" });
-        };
-        let margin = SPECULATIVE_DISTANCE + motion_bound(ctx, b);
-        *p = Proxy { aabb: b.aabb.expand(margin), is_static: b.body_type == BodyType::Static };
-        *pb = h.index();
-        n = n.saturating_add(1);
+    // The automatic index above the threshold sweeps the proxies sorted in
+    // place (see `SortAndSweepIndex::sort_in_place`); every other index gets
+    // them in slot order.
+    let live = bodies.iter().filter(|(_, b)| !b.out_of_bounds).count();
+    let in_place = matches!(bp.index, Index::Auto) && live > AUTO_THRESHOLD;
+    if live > bp.proxies.len().min(bp.proxy_bodies.len()) {
+        return Err(Error::CapacityFull { what: "broad-phase proxy" });
     }
+    let n = live;
     let BroadPhase { index, auto_sweep, proxies, proxy_bodies, pairs, joint_pairs } = bp;
-    let proxies = proxies.get(..n).unwrap_or(&[]);
-    let proxy_bodies = proxy_bodies.get(..n).unwrap_or(&[]);
+    let proxies = proxies.get_mut(..n).unwrap_or(&mut []);
+    let slots = proxy_bodies.get_mut(..n).unwrap_or(&mut []);
+    // Last step's sorted order serves again when it names exactly the bodies
+    // that need a proxy now: as many, each still live and inside the bounds
+    // (its entries are distinct by construction). Checked while refilling it.
+    let mut presorted = in_place && auto_sweep.sorted_len() == n;
+    if presorted {
+        for (p, &s) in proxies.iter_mut().zip(slots.iter()) {
+            match bodies.get_at(s) {
+                Some(b) if !b.out_of_bounds => *p = proxy(ctx, b),
+                _ => {
+                    presorted = false;
+                    break;
+                }
+            }
+        }
+    }
+    if !presorted {
+        let in_bounds = bodies.iter().filter(|(_, b)| !b.out_of_bounds);
+        for ((p, slot), (h, b)) in proxies.iter_mut().zip(slots.iter_mut()).zip(in_bounds) {
+            *p = proxy(ctx, b);
+            *slot = h.index();
+        }
+    }
+    if in_place {
+        auto_sweep.sort_in_place(proxies, slots, presorted);
+    } else {
+        auto_sweep.forget_order();
+    }
+    let proxies = &*proxies;
+    let slots = &*slots;
     let held_pairs = joint_pairs.get(..held).unwrap_or(&[]);
-    // The pairs the engine wants, by proxy indices (i < j): in range, allowed
-    // by the manual's filter, not held apart by a joint.
-    let accept = |i: u32, j: u32| {
-        let (Some(&sa), Some(&sb)) = (proxy_bodies.get(i as usize), proxy_bodies.get(j as usize)) else {
-            return false;
-        };
+    // The pairs the engine wants, by body slots (a < b): allowed by the
+    // manual's filter, not held apart by a joint.
+    let accept = |sa: u32, sb: u32| {
         let (Some(a), Some(b)) = (bodies.get_at(sa), bodies.get_at(sb)) else { return false };
-        should_collide(a, b) && held_pairs.binary_search(&(sa.min(sb), sa.max(sb))).is_err()
+        should_collide(a, b) && held_pairs.binary_search(&(sa, sb)).is_err()
     };
-    let mut sink = PairSink::new(pairs, ctx.strict_capacity, &accept);
+    let mut sink = PairSink::new(pairs, slots, ctx.strict_capacity, &accept);
     match index {
-        Index::Auto if n <= AUTO_THRESHOLD => BruteForceIndex.find_pairs(proxies, &mut sink),
-        Index::Auto => auto_sweep.find_pairs(proxies, &mut sink),
+        Index::Auto if in_place => sweep_sorted(proxies, &mut sink),
+        Index::Auto => BruteForceIndex.find_pairs(proxies, &mut sink),
         Index::BruteForce(i) => i.find_pairs(proxies, &mut sink),
         Index::SortAndSweep(i) => i.find_pairs(proxies, &mut sink),
         Index::Custom(i) => i.find_pairs(proxies, &mut sink),
@@ -166,17 +189,11 @@ pub(crate) fn broad_phase(
         return Err(Error::CapacityFull { what: "contact pair" });
     }
     let (reported, dropped) = (sink.len, sink.dropped);
-    // Proxy indices to body slots. Proxies are in slot order, so (i < j) maps
-    // to (slot_i < slot_j) and the key order is preserved.
+    // The sink keeps body-slot pairs; sort them into key order.
     let reported = pairs.get_mut(..reported).unwrap_or(&mut []);
-    for pair in reported.iter_mut() {
-        let (Some(&sa), Some(&sb)) = (proxy_bodies.get(pair.0 as usize), proxy_bodies.get(pair.1 as usize))
-        else {
-            continue;
-        };
-        *pair = (sa.min(sb), sa.max(sb));
-    }
-    reported.sort_unstable();
+    // The same order as the tuples' (lower slot, then higher), compared as one
+    // 64-bit key.
+    reported.sort_unstable_by_key(|&(a, b)| (u64::from(a) << 32) | u64::from(b));
     let unique = dedup_sorted(reported);
     if ctx.strict_capacity {
         // The merge writes one arbiter per key of the union; check it fits first.
@@ -237,10 +254,13 @@ pub(crate) fn update_arbiters(
             }
             continue;
         };
-        if !pair_arbiter(bodies, key, previous, arb) {
+        // Each body is looked up once: its handle (the live one in its slot)
+        // tells whether the previous arbiter still names it.
+        let (Some((ha, ba)), Some((hb, bb))) = (live_at(bodies, key.0), live_at(bodies, key.1)) else {
             continue;
-        }
-        let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else { continue };
+        };
+        pair_arbiter((ha, ba), (hb, bb), previous, arb);
+        let (a, b) = if arb.body_a == ha { (ba, bb) } else { (bb, ba) };
         let manifold = if candidate && should_collide(a, b) {
             let margin = SPECULATIVE_DISTANCE + motion_bound(ctx, a) + motion_bound(ctx, b);
             collide_bodies(a, b, paths, margin)
@@ -384,23 +404,29 @@ fn set_manifold(arb: &mut Arbiter, m: &Manifold) {
     arb.normal = m.normal;
 }
 
-/// Writes the arbiter for a key into `out`: the previous one (if its bodies
-/// are still the same live bodies) or a new one with the bodies in canonical
-/// order. False, leaving `out` as it was, when a body no longer exists.
+/// The live body in slot `index` and its handle.
+#[inline]
+fn live_at<'b>(bodies: &'b Arena<'_, Body>, index: u32) -> Option<(BodyHandle, &'b Body)> {
+    Some((bodies.handle_at(index)?, bodies.get_at(index)?))
+}
+
+/// Writes the arbiter for the pair of live bodies `x` and `y` (lower slot
+/// first) into `out`: the previous one if it names these same bodies (a body
+/// removed and a new one in its slot has a new handle), else a new one with the
+/// bodies in canonical order.
 fn pair_arbiter(
-    bodies: &Arena<'_, Body>,
-    key: (u32, u32),
+    x: (BodyHandle, &Body),
+    y: (BodyHandle, &Body),
     previous: Option<&Arbiter>,
     out: &mut Arbiter,
-) -> bool {
-    let (Some(ha), Some(hb)) = (bodies.handle_at(key.0), bodies.handle_at(key.1)) else { return false };
+) {
+    let ((ha, a), (hb, b)) = (x, y);
     if let Some(p) = previous {
-        if bodies.contains(p.body_a) && bodies.contains(p.body_b) {
+        if (p.body_a == ha && p.body_b == hb) || (p.body_a == hb && p.body_b == ha) {
             *out = *p;
-            return true;
+            return;
         }
     }
-    let (Some(a), Some(b)) = (bodies.get(ha), bodies.get(hb)) else { return false };
     // The manual's order: the body with the smaller shape kind first (circles
     // before polygons); the key order breaks ties.
     let (first, second, fa, fb) =
@@ -412,7 +438,14 @@ fn pair_arbiter(
         level_b: fb.collision_level,
         ..Arbiter::EMPTY
     };
-    true
+}
+
+/// A body's broad-phase proxy: its box enlarged by the speculative distance and
+/// its motion bound.
+#[inline]
+fn proxy(ctx: &StepContext, b: &Body) -> Proxy {
+    let margin = SPECULATIVE_DISTANCE + motion_bound(ctx, b);
+    Proxy { aabb: b.aabb.expand(margin), is_static: b.body_type == BodyType::Static }
 }
 
 /// The motion bound of a body: how far any point of it can move in `dt` at its
@@ -422,6 +455,7 @@ fn pair_arbiter(
 ///
 /// Speeds are taken at most at the world's limits, which the step enforces: a
 /// velocity a game set far above them cannot inflate the margins.
+#[inline(always)]
 fn motion_bound(ctx: &StepContext, b: &Body) -> Scalar {
     if !b.moved_by_step() {
         return Scalar::ZERO;

@@ -5,7 +5,8 @@
 //! numbers stay small whatever the world position) and then calls
 //! [`Manifold::from_local`] once to express them in world orientation.
 
-use crate::math::scalar::{Scalar, HALF, ZERO};
+use super::Direction;
+use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Transform, Vector2};
 
 /// Most contact points a manifold holds: two points are enough to hold a convex
@@ -88,7 +89,7 @@ impl Manifold {
         frame_is_b: bool,
     ) -> Self {
         let mut m = Self::EMPTY;
-        let n = frame.q.rotate(normal);
+        let n = Direction::of(normal).rotated(frame.q);
         m.normal = if frame_is_b { -n } else { n };
         for (slot, lp) in m.points.iter_mut().zip(local) {
             let anchor_frame = frame.q.rotate(lp.point);
@@ -115,9 +116,13 @@ pub(crate) struct LocalPoint {
 }
 
 /// `x / 2` (its lowest bit rounded as the `fixed` crate rounds products).
+///
+/// The same bits as `x * HALF`: that product is `⌊x · 2³¹ / 2³²⌋ = ⌊x / 2⌋`,
+/// which always fits, i.e. an arithmetic shift by one, without the 128-bit
+/// product.
 #[inline]
 pub(crate) fn half(x: Scalar) -> Scalar {
-    x * HALF
+    Scalar::from_bits(x.to_bits() >> 1)
 }
 
 /// The unit vector along `v` and the length of `v` (m), or `None` for the zero
@@ -139,11 +144,30 @@ pub(crate) fn direction_and_length(v: Vector2) -> Option<(Vector2, Scalar)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::scalar::HALF;
     use crate::math::scalar::{self, from_int, ONE};
     use crate::math::Rot;
 
     fn unit_error(n: Vector2) -> Scalar {
         (n.length_squared() - ONE).abs()
+    }
+
+    #[test]
+    fn half_is_the_product_by_one_half() {
+        let mut x = 0x2545_F491_4F6C_DD1Du64;
+        for k in 0..10_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = match k {
+                0 => Scalar::MIN,
+                1 => Scalar::MAX,
+                2 => Scalar::from_bits(-1),
+                3 => Scalar::from_bits(1),
+                _ => Scalar::from_bits(x as i64 >> (k % 40)),
+            };
+            assert_eq!(half(v), v * HALF, "{v:?}");
+        }
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! closest face or vertex.
 
 use super::manifold::{direction_and_length, half, LocalPoint, Manifold};
-use super::next_index;
+use super::{next_index, Direction};
 use crate::geometry::PolygonPath;
 use crate::math::{Scalar, Transform};
 
@@ -38,7 +38,7 @@ pub fn collide_polygon_circle(
     // first of equal faces wins).
     let mut best: Option<(usize, Scalar)> = None;
     for (i, (v, n)) in vertices.iter().zip(normals).enumerate() {
-        let s = n.dot(centre - *v);
+        let s = Direction::of(*n).dot(centre - *v);
         if best.is_none_or(|(_, b)| s > b) {
             best = Some((i, s));
         }
@@ -71,17 +71,19 @@ pub fn collide_polygon_circle(
         None
     };
 
-    let (normal, surface_a, distance) =
-        match corner.and_then(|v| direction_and_length(centre - v).map(|(n, d)| (n, v, d))) {
-            Some(found) => found,
-            // Face region, or the centre inside: project the centre onto the face.
-            None => (face_normal, centre - face_normal * face_separation, face_separation),
-        };
+    let (normal, surface_a, distance) = match corner
+        .and_then(|v| direction_and_length(centre - v).map(|(n, d)| (n, v, d)))
+    {
+        Some(found) => found,
+        // Face region, or the centre inside: project the centre onto the face.
+        None => (face_normal, centre - Direction::of(face_normal).scale(face_separation), face_separation),
+    };
     let separation = distance - radius_b;
     if separation > margin {
         return Manifold::EMPTY;
     }
-    let local = LocalPoint { point: surface_a + normal * half(separation), separation, id: 0 };
+    let local =
+        LocalPoint { point: surface_a + Direction::of(normal).scale(half(separation)), separation, id: 0 };
     Manifold::from_local(xf_a, xf_b.p, normal, &[local], false)
 }
 

@@ -25,7 +25,7 @@
 //! numbers stay of the size of the bodies, whatever their world position.
 
 use super::manifold::{direction_and_length, half, LocalPoint, Manifold, MAX_MANIFOLD_POINTS};
-use super::next_index;
+use super::{next_index, Direction};
 use crate::geometry::{PolygonPath, MAX_POLYGON_VERTICES};
 use crate::math::{Rot, Scalar, Transform, Vector2};
 
@@ -94,7 +94,7 @@ pub fn collide_polygons(
     let b_in_a = xf_a.inv_mul(xf_b);
     let verts_b_in_a = transform_vertices(poly_b, b_in_a);
     let verts_b_in_a = verts_b_in_a.get(..poly_b.vertices().len()).unwrap_or(&[]);
-    let Some((edge_a, sep_a)) = max_separation(poly_a, verts_b_in_a) else {
+    let Some((edge_a, sep_a)) = max_separation(poly_a, verts_b_in_a, b_in_a.p) else {
         return Manifold::EMPTY;
     };
     if sep_a > margin {
@@ -103,7 +103,7 @@ pub fn collide_polygons(
     let a_in_b = xf_b.inv_mul(xf_a);
     let verts_a_in_b = transform_vertices(poly_a, a_in_b);
     let verts_a_in_b = verts_a_in_b.get(..poly_a.vertices().len()).unwrap_or(&[]);
-    let Some((edge_b, sep_b)) = max_separation(poly_b, verts_a_in_b) else {
+    let Some((edge_b, sep_b)) = max_separation(poly_b, verts_a_in_b, a_in_b.p) else {
         return Manifold::EMPTY;
     };
     if sep_b > margin {
@@ -146,40 +146,130 @@ pub fn collide_polygons(
 
 /// `poly`'s vertices mapped by `xf` (into the other body's frame). Entries past
 /// the polygon's vertex count are zero.
+///
+/// Computes `xf.apply(v)` for each vertex, `(c·x − s·y + px, s·x + c·y + py)`,
+/// but reuses the two products of a coordinate equal to the previous vertex's
+/// (the same inputs give the same bits): a box's consecutive corners share x or
+/// y, so its four corners take 10 products instead of 16.
 fn transform_vertices(poly: &PolygonPath, xf: Transform) -> [Vector2; MAX_POLYGON_VERTICES] {
     let mut out = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+    let (c, s, p) = (xf.q.c, xf.q.s, xf.p);
+    let mut prev: Option<(Vector2, [Scalar; 4])> = None;
     for (slot, v) in out.iter_mut().zip(poly.vertices()) {
-        *slot = xf.apply(*v);
+        // [c·x, s·x, s·y, c·y]
+        let [cx, sx] = match prev {
+            Some((u, k)) if u.x == v.x => [k[0], k[1]],
+            _ => [c * v.x, s * v.x],
+        };
+        let [sy, cy] = match prev {
+            Some((u, k)) if u.y == v.y => [k[2], k[3]],
+            _ => [s * v.y, c * v.y],
+        };
+        *slot = Vector2::new(cx - sy, sx + cy) + p;
+        prev = Some((*v, [cx, sx, sy, cy]));
     }
     out
 }
 
 /// The face of `poly` with the greatest separation from the convex polygon with
 /// vertices `other` (in `poly`'s frame), and that separation (m): the signed
-/// distance of `other`'s deepest vertex beyond the face. The first face wins ties.
-/// `None` when either polygon has no vertices.
-fn max_separation(poly: &PolygonPath, other: &[Vector2]) -> Option<(usize, Scalar)> {
+/// distance of `other`'s deepest vertex beyond the face. The first face (lowest
+/// index) wins ties. `None` when either polygon has no vertices.
+///
+/// A box in its own frame (normals −y, +x, +y, −x, as
+/// [`PolygonPath::rectangle`] makes them) takes a straight-line full scan: each
+/// distance is one subtraction, and without early exits there is nothing to
+/// mispredict. Any other polygon is scanned face by face from the face looking
+/// towards `towards` (the other polygon's origin in `poly`'s frame), which is
+/// usually the answer: a face replaces the best only when its deepest vertex is
+/// shallower (or as shallow with a lower index), so each later face's scan
+/// stops at its first vertex at or below the best. The result is the same for
+/// every start and on both paths (a test holds both to the definition).
+fn max_separation(poly: &PolygonPath, other: &[Vector2], towards: Vector2) -> Option<(usize, Scalar)> {
     if other.is_empty() {
         return None;
     }
-    let mut best: Option<(usize, Scalar)> = None;
-    for (i, (v, n)) in poly.vertices().iter().zip(poly.normals()).enumerate() {
-        // A face replaces the best only when its deepest vertex is strictly
-        // shallower, so its scan stops at the first vertex at or below the best
-        // (the result is the same; most faces of resting boxes stop at once).
-        let bound = best.map(|(_, b)| b);
-        let mut deepest = Scalar::MAX;
+    let (vertices, normals) = (poly.vertices(), poly.normals());
+    let count = vertices.len().min(normals.len());
+    let mut dirs = [Direction::PosX; MAX_POLYGON_VERTICES];
+    for (d, n) in dirs.iter_mut().zip(normals.iter().take(count)) {
+        *d = Direction::of(*n);
+    }
+    let dirs = dirs.get(..count).unwrap_or(&[]);
+    if let ([v0, v1, v2, v3], [Direction::NegY, Direction::PosX, Direction::PosY, Direction::NegX]) =
+        (vertices, dirs)
+    {
+        // A box in its own frame, as `PolygonPath::rectangle` makes it: each
+        // face's distance is a subtraction (the dot product by an axis, its
+        // `+ 0` changing nothing), so the plain full scan, straight-line and
+        // without early exits or a start face, is the cheapest; it is the
+        // definition itself (the first of equal faces wins).
+        let z = Scalar::ZERO;
+        let (mut d0, mut d1, mut d2, mut d3) = (Scalar::MAX, Scalar::MAX, Scalar::MAX, Scalar::MAX);
         for w in other {
-            deepest = deepest.min(n.dot(*w - *v));
-            if bound.is_some_and(|b| deepest <= b) {
-                break;
+            d0 = d0.min(z + -(w.y - v0.y));
+            d1 = d1.min((w.x - v1.x) + z);
+            d2 = d2.min(z + (w.y - v2.y));
+            d3 = d3.min(-(w.x - v3.x) + z);
+        }
+        let mut best = (0, d0);
+        for (i, d) in [(1, d1), (2, d2), (3, d3)] {
+            if d > best.1 {
+                best = (i, d);
             }
         }
-        if bound.is_none_or(|b| deepest > b) {
+        return Some(best);
+    }
+    let mut start: Option<(usize, Scalar)> = None;
+    for (i, d) in dirs.iter().enumerate() {
+        let along = d.dot(towards);
+        if start.is_none_or(|(_, a)| along > a) {
+            start = Some((i, along));
+        }
+    }
+    let start = start.map_or(0, |(i, _)| i);
+    let mut best: Option<(usize, Scalar)> = None;
+    for k in 0..count {
+        let i = if start + k < count { start + k } else { start + k - count };
+        let (Some(v), Some(d)) = (vertices.get(i), dirs.get(i)) else { continue };
+        let deepest = match *d {
+            Direction::PosX => deepest_vertex(other, best, i, |w| (w.x - v.x) + Scalar::ZERO),
+            Direction::NegX => deepest_vertex(other, best, i, |w| -(w.x - v.x) + Scalar::ZERO),
+            Direction::PosY => deepest_vertex(other, best, i, |w| Scalar::ZERO + (w.y - v.y)),
+            Direction::NegY => deepest_vertex(other, best, i, |w| Scalar::ZERO + -(w.y - v.y)),
+            Direction::Any(n) => deepest_vertex(other, best, i, |w| n.dot(w - *v)),
+        };
+        let replaces = match best {
+            None => true,
+            Some((bi, b)) => deepest > b || (deepest == b && i < bi),
+        };
+        if replaces {
             best = Some((i, deepest));
         }
     }
     best
+}
+
+/// The least of `distance(w)` over `other`, face `face`'s deepest vertex, or
+/// any value that does not replace `best` once the scan shows it cannot (see
+/// [`max_separation`]).
+#[inline(always)]
+fn deepest_vertex(
+    other: &[Vector2],
+    best: Option<(usize, Scalar)>,
+    face: usize,
+    distance: impl Fn(Vector2) -> Scalar,
+) -> Scalar {
+    let mut deepest = Scalar::MAX;
+    for w in other {
+        deepest = deepest.min(distance(*w));
+        if let Some((bi, b)) = best {
+            if deepest < b || (deepest == b && face > bi) {
+                break;
+            }
+        }
+    }
+    deepest
 }
 
 /// The chosen reference face and the other polygon, in the reference polygon's
@@ -220,15 +310,16 @@ impl Reference<'_> {
         let ref_vertices = self.poly.vertices();
         let edge_end = next_index(self.edge, ref_vertices.len());
         let n = *self.poly.normals().get(self.edge)?;
+        let n_dir = Direction::of(n);
         let v1 = *ref_vertices.get(self.edge)?;
         let v2 = *ref_vertices.get(edge_end)?;
 
         // Incident edge: smallest normal · reference normal, first index on ties.
         // Comparing in the incident polygon's own frame avoids rotating its normals.
-        let n_incident = self.incident_rotation.inv_rotate(n);
+        let n_incident = n_dir.inv_rotated(self.incident_rotation);
         let mut incident: Option<(usize, Scalar)> = None;
         for (k, m) in self.incident.normals().iter().enumerate() {
-            let d = m.dot(n_incident);
+            let d = Direction::of(*m).dot(n_incident);
             if incident.is_none_or(|(_, b)| d < b) {
                 incident = Some((k, d));
             }
@@ -249,7 +340,7 @@ impl Reference<'_> {
         // Clip the incident edge to the strip of the reference face. `t` runs
         // along the face from v1 to v2 (the outward normal turned +90°, for a
         // counter-clockwise polygon); `tau` is the coordinate along it.
-        let t = n.perp();
+        let t = Direction::of(n.perp());
         let length = t.dot(v2 - v1);
         let (tau1, tau2) = (t.dot(i1 - v1), t.dot(i2 - v1));
         let outside_low = tau1 < Scalar::ZERO && tau2 < Scalar::ZERO;
@@ -262,8 +353,8 @@ impl Reference<'_> {
         let base_id = self.pair_id(self.edge, k1);
         let (id2, id1) = if self.reference_is_b { (base_id | 1, base_id) } else { (base_id, base_id | 1) };
         let face_point = |p: Vector2, id: u16| {
-            let separation = n.dot(p - v1);
-            LocalPoint { point: p - n * half(separation), separation, id }
+            let separation = n_dir.dot(p - v1);
+            LocalPoint { point: p - n_dir.scale(half(separation)), separation, id }
         };
         if outside_low || outside_high {
             // The incident edge lies wholly beside the strip: not proven
@@ -386,6 +477,89 @@ mod tests {
             p.normals[i] = (b - *a).normalize().right_perp();
         }
         p
+    }
+
+    /// The definition `max_separation` must match: every face scanned in full,
+    /// in index order, the first of equal faces kept.
+    fn max_separation_by_definition(poly: &PolygonPath, other: &[Vector2]) -> Option<(usize, Scalar)> {
+        if other.is_empty() {
+            return None;
+        }
+        let mut best: Option<(usize, Scalar)> = None;
+        for (i, (v, n)) in poly.vertices().iter().zip(poly.normals()).enumerate() {
+            let deepest = other.iter().map(|w| n.dot(*w - *v)).min().unwrap_or(Scalar::MAX);
+            if best.is_none_or(|(_, b)| deepest > b) {
+                best = Some((i, deepest));
+            }
+        }
+        best
+    }
+
+    #[test]
+    fn max_separation_is_the_first_best_face_from_any_start() {
+        // The rectangles take the box path, the triangle the general one.
+        let unit = rect(1, 1);
+        assert_eq!(unit.normals().len(), 4);
+        let dirs: [Direction; 4] = core::array::from_fn(|i| Direction::of(unit.normals()[i]));
+        assert!(matches!(dirs, [Direction::NegY, Direction::PosX, Direction::PosY, Direction::NegX]));
+        let tri = polygon(&[v("0", "-0.2"), v("1", "1"), v("-1", "1")]);
+        let shapes = [rect(1, 1), rect(4, 2), tri, rect(2, 2)];
+        let mut x = 0x0DDB_1A5E_5BAD_5EEDu64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for k in 0..20_000usize {
+            let (a, b) = (&shapes[k % 4], &shapes[(k / 4) % 4]);
+            let r = next();
+            // Every fourth case unrotated and on a quarter-metre grid: exact ties.
+            let q =
+                if k % 4 == 0 { Rot::IDENTITY } else { Rot::from_angle(Scalar::from_bits((r as i64) >> 29)) };
+            let grid = |bits: u64| Scalar::from_bits(((bits % 17) as i64 - 8) << 30);
+            let p = if k % 4 == 0 {
+                Vector2::new(grid(r >> 8), grid(r >> 20))
+            } else {
+                Vector2::new(
+                    Scalar::from_bits((next() as i64) >> 30),
+                    Scalar::from_bits((next() as i64) >> 30),
+                )
+            };
+            let verts = transform_vertices(b, Transform::new(p, q));
+            let other = &verts[..b.vertices().len()];
+            let towards = Vector2::new(
+                Scalar::from_bits((next() as i64) >> 28),
+                Scalar::from_bits((next() as i64) >> 28),
+            );
+            for t in [p, towards, Vector2::ZERO] {
+                assert_eq!(max_separation(a, other, t), max_separation_by_definition(a, other), "case {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn transformed_vertices_are_those_of_transform_apply() {
+        let tri = polygon(&[v("0", "-0.2"), v("1", "1"), v("-1", "1")]);
+        let shapes =
+            [rect(1, 1), rect(4, 2), tri, polygon(&[v("0", "0"), v("1", "0"), v("1", "1"), v("0", "1")])];
+        let mut x = 0x1234_5678_9ABC_DEF1u64;
+        for k in 0..2_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let angle = Scalar::from_bits((x as i64) >> 28);
+            let p = Vector2::new(
+                Scalar::from_bits((x as i64) >> 20),
+                Scalar::from_bits((x.rotate_left(17) as i64) >> 20),
+            );
+            let xf = Transform::new(p, Rot::from_angle(angle));
+            let shape = &shapes[k % shapes.len()];
+            let got = transform_vertices(shape, xf);
+            for (g, w) in got.iter().zip(shape.vertices()) {
+                assert_eq!(*g, xf.apply(*w));
+            }
+        }
     }
 
     #[test]

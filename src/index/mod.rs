@@ -29,6 +29,7 @@ mod brute_force;
 mod sort_and_sweep;
 
 pub use brute_force::BruteForceIndex;
+pub(crate) use sort_and_sweep::sweep_sorted;
 pub use sort_and_sweep::SortAndSweepIndex;
 
 use crate::math::Rect;
@@ -53,14 +54,18 @@ pub struct Proxy {
 /// discard anyway (two bodies that may not collide: both without mass, a shared
 /// collision group, a joint that keeps them apart) as they are reported. When
 /// its buffer fills it sorts it and removes duplicates; if it is still full,
-/// it keeps the pairs with the lowest keys (lower proxy index, then higher),
-/// so which pairs are kept does not depend on the order of the reports. The
+/// it keeps the pairs with the lowest keys (lower body slot, then higher; the
+/// proxies are in slot order, so also lower proxy index, then higher), so
+/// which pairs are kept does not depend on the order of the reports. The
 /// pairs it had to leave out are counted in
 /// [`StepReport::pairs_dropped`](crate::StepReport::pairs_dropped), and the step
 /// goes on without them (or, with
 /// [`WorldDef::strict_capacity`](crate::WorldDef::strict_capacity), fails).
 pub struct PairSink<'s> {
+    /// Kept pairs of body slots, `(lower, higher)`.
     pub(crate) pairs: &'s mut [(u32, u32)],
+    /// The body slot of each proxy index the index reports.
+    pub(crate) slots: &'s [u32],
     pub(crate) len: usize,
     /// The buffer is full, sorted and without duplicates: new pairs are
     /// inserted in order, evicting the highest key.
@@ -72,18 +77,20 @@ pub struct PairSink<'s> {
     pub(crate) strict: bool,
     /// A pair did not fit in strict mode.
     pub(crate) overflowed: bool,
-    /// Whether the engine wants the pair of proxies `(a, b)`, `a < b`.
+    /// Whether the engine wants the pair of body slots `(a, b)`, `a < b`.
     pub(crate) accept: &'s dyn Fn(u32, u32) -> bool,
 }
 
 impl<'s> PairSink<'s> {
-    /// A sink writing into `pairs`, keeping the pairs `accept` wants.
+    /// A sink writing into `pairs` the body-slot pairs (by `slots`, the body
+    /// slot of each proxy) that `accept` wants.
     pub(crate) fn new(
         pairs: &'s mut [(u32, u32)],
+        slots: &'s [u32],
         strict: bool,
         accept: &'s dyn Fn(u32, u32) -> bool,
     ) -> Self {
-        Self { pairs, len: 0, sorted_full: false, dropped: 0, strict, overflowed: false, accept }
+        Self { pairs, slots, len: 0, sorted_full: false, dropped: 0, strict, overflowed: false, accept }
     }
 }
 
@@ -97,6 +104,9 @@ impl PairSink<'_> {
         if a == b || self.overflowed {
             return !self.overflowed;
         }
+        let (Some(&a), Some(&b)) = (self.slots.get(a as usize), self.slots.get(b as usize)) else {
+            return true; // out of range
+        };
         let pair = if a < b { (a, b) } else { (b, a) };
         if !(self.accept)(pair.0, pair.1) {
             return true;
@@ -183,13 +193,24 @@ pub fn proxies_may_touch(a: &Proxy, b: &Proxy) -> bool {
 mod tests {
     use super::*;
 
+    /// Proxy index = body slot.
+    const IDENTITY: [u32; 32] = {
+        let mut s = [0u32; 32];
+        let mut k = 0;
+        while k < 32 {
+            s[k] = k as u32;
+            k += 1;
+        }
+        s
+    };
+
     /// The pairs a sink of `cap` slots keeps from `reports`, and how many it
     /// dropped. (These tests use `Vec`: they run with `std`, the default.)
     #[cfg(feature = "std")]
     fn kept(cap: usize, reports: &[(u32, u32)]) -> (std::vec::Vec<(u32, u32)>, usize) {
         let mut buf = std::vec![(0u32, 0u32); cap];
         let accept = |_: u32, _: u32| true;
-        let mut sink = PairSink::new(&mut buf, false, &accept);
+        let mut sink = PairSink::new(&mut buf, &IDENTITY, false, &accept);
         for &(a, b) in reports {
             assert!(sink.push(a, b), "a lenient sink never asks the index to stop");
         }
@@ -231,7 +252,7 @@ mod tests {
     fn a_strict_sink_stops_at_the_first_pair_that_does_not_fit() {
         let mut buf = [(0u32, 0u32); 1];
         let accept = |_: u32, _: u32| true;
-        let mut sink = PairSink::new(&mut buf, true, &accept);
+        let mut sink = PairSink::new(&mut buf, &IDENTITY, true, &accept);
         assert!(sink.push(0, 1));
         assert!(sink.push(1, 0), "a duplicate fits");
         assert!(!sink.push(0, 2));
