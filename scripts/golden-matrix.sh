@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Golden hashes on the seven targets of the determinism contract, in debug and
-# release: x86_64 (native), i686, aarch64, armv7, s390x (big-endian) under
+# release: x86_64 (native, and built for x86-64-v3 in release), i686, aarch64, armv7, s390x (big-endian) under
 # qemu-user, wasm32-wasip1 under node, and a bare-metal Cortex-M4
 # (thumbv7em-none-eabihf, no_std, no allocator) under qemu-system-arm.
 #
@@ -169,6 +169,8 @@ golden() {
   local name=$target args=(--locked --test golden) t0=$SECONDS status=0
   if [ "$target" = native ]; then
     name=$HOST
+  elif [ "$target" = native-v3 ]; then
+    name=$HOST-x86-64-v3
   else
     args+=(--target "$target")
   fi
@@ -185,6 +187,15 @@ say "golden matrix: cargo test --test golden (debug and release) per target, the
 HOST=$(rustc -vV | sed -n 's/^host: //p')
 if selected "$HOST"; then
   for profile in debug release; do golden native "$profile" native; done
+fi
+# x86-64 with AVX2 compiled in (the contact kernels' eight-lane path without
+# runtime dispatch), in a target directory of its own so the flags do not
+# rebuild the native one. The native runs above take the runtime-dispatched
+# AVX2 path where the processor has it, and tests/simd_parity.rs compares it
+# with the portable path.
+if [ "$(uname -m)" = x86_64 ] && selected "x86-64-v3"; then
+  golden native-v3 release "x86-64-v3 (AVX2 built in)" RUSTFLAGS="-C target-cpu=x86-64-v3" \
+    CARGO_TARGET_DIR="$ROOT/target/x86-64-v3"
 fi
 
 # One cargo invocation builds every selected foreign target of a profile, so the

@@ -1,5 +1,5 @@
 #![cfg_attr(not(feature = "std"), no_std)]
-#![forbid(unsafe_code)]
+#![deny(unsafe_code)]
 #![warn(missing_docs)]
 //! # arphysics
 //!
@@ -215,6 +215,7 @@ pub use limits::{MAX_TIME_STEP, MIN_TIME_STEP};
 pub use managed::ManagedSlice;
 pub use math::{Matrix22, Rect, Rot, Scalar, Transform, Vector2};
 pub use query::{QueryFilter, QueryShape, RayHit};
+pub use solver::{limit_simd_level, simd_level, SimdLevel};
 pub use world::{
     Capacities, GeneratorHandle, JointBreakFn, StepReport, Storage, World, WorldBuffers, WorldDef, WorldStats,
 };

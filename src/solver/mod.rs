@@ -18,14 +18,16 @@
 //! 5. relaxes: one sweep without the position bias, so the push-out does not
 //!    leave energy behind; the last sub-step adds one more forward sweep.
 //!
-//! Both sweeps of a sub-step run in the same direction, in pair order or in
-//! reverse, and the direction changes every two sub-steps: forward, reverse,
-//! reverse, forward (then forward, reverse, reverse, forward with 8 sub-steps),
-//! so over a step every pair is solved first as often as last, in the biased
-//! sweeps as in the relax sweeps.
+//! Both sweeps of a sub-step run in the same direction, in colour order or in
+//! reverse (see **Order** below), and the direction changes every two
+//! sub-steps: forward, reverse, reverse, forward (then forward, reverse,
+//! reverse, forward with 8 sub-steps), so over a step every contact is solved
+//! first as often as last, in the biased sweeps as in the relax sweeps.
 //!
 //! These choices were measured on `tests/quality.rs` and `tests/scale.rs`, not
-//! picked for looks: with one-way sweeps a symmetric pyramid creeps sideways
+//! picked for looks (the figures below are from the `Scalar` solver in pair-key
+//! order that preceded the lanes and colours; `colour` has the measurements
+//! that chose the colour order, with which the column ends steps at 2.97 m/s): with one-way sweeps a symmetric pyramid creeps sideways
 //! (16 mm in 10 s); solving the two points of a manifold one after the other lets
 //! a 20-box stack topple (the first point always takes more). Two relax sweeps in
 //! every sub-step (12 sweeps a step) were an earlier design; one sweep (8,
@@ -47,21 +49,38 @@
 //! The separation of each contact point is re-evaluated in every sub-step from
 //! how far the bodies moved and turned since the step began (linearised in the
 //! turn; see [`contact`]), so no collision detection runs inside the loop.
-//! Everything iterates in the canonical arbiter order and body-slot order.
 //!
-//! The loops run over two dense arrays built once per step (see [`contact`]):
-//! a [`SolverBody`] per body slot and a [`ContactConstraint`] per solved arbiter.
+//! **Numbers.** The contact kernels compute in their own 32-bit integer
+//! formats ([`lanes`]: velocities Q16.16, impulses in velocity units, mass
+//! ratios instead of masses), whose products are a 32×32→64 multiply and a
+//! shift; everything persistent, the joints and the once-per-step prepare and
+//! store stay in `Scalar`. Each body's `Scalar` velocity stays its own: the
+//! kernels' changes are carried back as differences ([`body`]), so a body no
+//! contact touches moves exactly as before.
+//!
+//! **Order.** Each step the solved arbiters are coloured ([`colour`]) so that
+//! no two contacts of a colour share a dynamic body; a sweep runs the overflow
+//! (contacts that found no colour) one at a time in key order, then the colours
+//! (the reverse sweep the exact reverse). Within a colour the order changes no
+//! bit, so a colour's contacts are solved eight at a time where the processor
+//! has AVX2 ([`dispatch`]) and one at a time elsewhere, with identical results.
+//! Joints run in joint-slot order, bodies in slot order: every order is a
+//! function of the simulation state alone.
 
 mod body;
+mod colour;
 mod contact;
+mod dispatch;
+mod lanes;
 mod softness;
 mod sweep;
 
-pub use body::SolverBody;
-pub use contact::ContactConstraint;
+pub use body::{BodyLanes, SolverBody};
+pub use contact::{ContactConstraint, ContactScratch};
+pub use dispatch::{limit_simd_level, simd_level, SimdLevel};
 
 pub(crate) use body::inverse_mass;
-use contact::{Carried, StepParams};
+use contact::LaneParams;
 use managed::ManagedSlice;
 pub(crate) use softness::{Row, Softness};
 pub(crate) use sweep::{Bias, Sweep};
@@ -74,12 +93,13 @@ use crate::math::scalar::{Scalar, ZERO};
 use crate::math::Vector2;
 use crate::step::StepContext;
 
+pub(crate) use colour::RUNS;
+
 /// The direction of sub-step `substep`'s warm start: against the pass before it
 /// (the previous sub-step's relax sweep, or the forward constraint build), so
 /// that it begins with the constraints that pass left in cache. Warm starting
 /// only adds each constraint's own fixed impulses to its bodies' velocities,
-/// and fixed-point sums are exact, so the order changes no result (short of a
-/// velocity saturating).
+/// so the order changes no result (short of a velocity reaching the wall).
 fn warm_start_direction(substep: u32) -> Sweep {
     match substep.checked_sub(1) {
         None => Sweep::Reverse,
@@ -89,7 +109,7 @@ fn warm_start_direction(substep: u32) -> Sweep {
 
 /// The direction of sub-step `substep`'s sweeps: forward, reverse, reverse,
 /// forward, forward, reverse, … (each direction twice in a row, so that
-/// neither end of the constraint list is always solved first).
+/// neither end of the constraint order is always solved first).
 fn sweep_direction(substep: u32) -> Sweep {
     if (substep.saturating_add(1) / 2) % 2 == 1 {
         Sweep::Reverse
@@ -110,61 +130,44 @@ pub(crate) fn solve(
 ) {
     let n = ctx.substeps;
     let h = ctx.h;
-    let params = StepParams {
-        inv_h: ctx.inv_h,
-        soft: ctx.contact_softness,
-        static_soft: ctx.static_softness,
-        push_speed: ctx.push_speed,
-    };
-    load(bodies, arbiters, solver, ctx.inv_substeps, &params);
+    let params = LaneParams::new(ctx);
+    load(ctx, bodies, arbiters, solver);
     prepare_joints(ctx, bodies, joints, constraints);
     // The built-in joints work on the solver's bodies; the game's constraints
     // see `Body`, so when there are any the solver's copy is written to the
     // bodies around their pass.
     let user = !constraints.is_empty();
-    let (vmax, wmax) = (ctx.max_linear_speed, ctx.max_angular_speed);
+    let vmax = ctx.max_linear_speed;
     for substep in 0..n {
         let sweep = sweep_direction(substep);
-        let (sbodies, _) = solver.split();
-        for sb in sbodies.iter_mut().filter(|sb| sb.forced) {
-            sb.v += sb.force_dv;
-            sb.w += sb.force_dw;
+        for (sb, lane) in solver.bodies.iter_mut().zip(solver.lanes.iter_mut()).filter(|(sb, _)| sb.forced) {
+            sb.add_force(lane);
         }
         for_each_joint(joints, solver, Sweep::Forward, |j, a, b| j.warm_start(a, b));
-        let (sbodies, cs) = solver.split();
-        contact::warm_start(sbodies, cs, warm_start_direction(substep), Carried::for_substep(substep));
+        let count_totals = substep > 0;
+        dispatch::run(solver, warm_start_direction(substep), &contact::WarmStart { count_totals });
         for_each_joint(joints, solver, Sweep::Forward, |j, a, b| j.solve(a, b, h, Bias::On));
         if user {
             store_bodies(solver, bodies);
             solve_user_constraints(bodies, constraints, h);
             reload_bodies(solver, bodies);
         }
-        let (sbodies, cs) = solver.split();
-        contact::solve(sbodies, cs, &params, Bias::On, sweep);
-        for sb in sbodies.iter_mut().filter(|sb| sb.moves) {
-            // Component clamps are cheap and bound the displacement; the
-            // exact speed limit is applied once at the end of the step.
-            let v = sb.v;
-            sb.v = Vector2::new(v.x.clamp(-vmax, vmax), v.y.clamp(-vmax, vmax));
-            sb.w = sb.w.clamp(-wmax, wmax);
-            sb.p += sb.v * h;
-            let turn = sb.w * h;
-            sb.angle += turn;
-            sb.q = sb.q.integrate(turn);
+        contact_sweep(solver, &params, Bias::On, sweep);
+        for (sb, lane) in solver.bodies.iter_mut().zip(solver.lanes.iter_mut()).filter(|(sb, _)| sb.moves) {
+            sb.integrate(h, vmax, lane);
         }
         // Relax: one sweep in the sub-step's direction; the last sub-step
         // adds a forward sweep, which drains what the push-out left in the
         // velocities the step ends with.
         // The joints' relax pass runs in reverse slot order in every sub-step.
         for_each_joint(joints, solver, Sweep::Reverse, |j, a, b| j.solve(a, b, h, Bias::Off));
-        let (sbodies, cs) = solver.split();
-        contact::solve(sbodies, cs, &params, Bias::Off, sweep);
+        contact_sweep(solver, &params, Bias::Off, sweep);
         if substep + 1 == n {
-            contact::solve(sbodies, cs, &params, Bias::Off, Sweep::Forward);
+            contact_sweep(solver, &params, Bias::Off, Sweep::Forward);
         }
     }
-    let (sbodies, cs) = solver.split();
-    contact::restitute_and_store(sbodies, cs, arbiters.live_mut(), ctx.restitution_threshold);
+    dispatch::run(solver, Sweep::Forward, &contact::Restitute { params: &params });
+    solver.store_contacts(arbiters.live_mut());
     store_bodies(solver, bodies);
     for (_, j) in joints.iter_mut() {
         j.broken = j.finish_step();
@@ -175,45 +178,41 @@ pub(crate) fn solve(
     }
 }
 
-/// Copies the bodies into the solver's array and builds the contact
-/// constraints of the arbiters solved this step, in arbiter order.
+/// One sweep over every contact, in colour order (`sweep`'s direction).
+fn contact_sweep(solver: &mut Solver<'_>, params: &LaneParams, bias: Bias, sweep: Sweep) {
+    let reverse = sweep == Sweep::Reverse;
+    dispatch::run(solver, sweep, &contact::SweepPass { params, bias, reverse });
+}
+
+/// Copies the bodies into the solver's array, colours the arbiters solved this
+/// step and builds their constraints in colour order.
 fn load(
+    ctx: &StepContext,
     bodies: &Arena<'_, Body>,
     arbiters: &mut ArbiterStore<'_>,
     solver: &mut Solver<'_>,
-    inv_n: Scalar,
-    params: &StepParams,
 ) {
     let sbodies: &mut [SolverBody] = &mut solver.bodies;
+    let lanes: &mut [BodyLanes] = &mut solver.lanes;
     for (i, b) in bodies.iter() {
-        if let Some(sb) = sbodies.get_mut(i.index() as usize) {
-            *sb = SolverBody::load(b, inv_n);
+        let k = i.index() as usize;
+        if let (Some(sb), Some(lane)) = (sbodies.get_mut(k), lanes.get_mut(k)) {
+            *sb = SolverBody::load(b, ctx.inv_substeps, ctx.max_angular_speed, lane);
         }
     }
-    let mut count = 0usize;
-    for (k, arb) in arbiters.live_mut().iter_mut().enumerate() {
-        if !arb.solve {
-            continue;
-        }
-        let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else {
-            arb.solve = false;
-            continue;
-        };
-        // The constraint buffer is as long as the arbiter buffer.
-        let Some(slot) = solver.constraints.get_mut(count) else { break };
-        contact::prepare(k as u32, arb, (arb.body_a.index(), arb.body_b.index()), (a, b), params, slot);
-        count = count.saturating_add(1);
-    }
-    solver.count = count;
+    let scales = (ctx.contact_softness.mass_scale, ctx.static_softness.mass_scale);
+    colour::build(bodies, arbiters.live_mut(), solver, scales);
 }
 
 /// Writes the solver's copy of every body the step moves back to the bodies
 /// (static and frozen bodies keep their state untouched).
-fn store_bodies(solver: &Solver<'_>, bodies: &mut Arena<'_, Body>) {
-    let sbodies: &[SolverBody] = &solver.bodies;
+fn store_bodies(solver: &mut Solver<'_>, bodies: &mut Arena<'_, Body>) {
+    let sbodies: &mut [SolverBody] = &mut solver.bodies;
+    let lanes: &[BodyLanes] = &solver.lanes;
     for (i, b) in bodies.iter_mut() {
-        if let Some(sb) = sbodies.get(i.index() as usize).filter(|sb| sb.moves) {
-            sb.store(b);
+        let k = i.index() as usize;
+        if let (Some(sb), Some(lane)) = (sbodies.get_mut(k).filter(|sb| sb.moves), lanes.get(k)) {
+            sb.store(b, lane);
         }
     }
 }
@@ -221,9 +220,11 @@ fn store_bodies(solver: &Solver<'_>, bodies: &mut Arena<'_, Body>) {
 /// Reads back into the solver's copy what a pass on the bodies changed.
 fn reload_bodies(solver: &mut Solver<'_>, bodies: &Arena<'_, Body>) {
     let sbodies: &mut [SolverBody] = &mut solver.bodies;
+    let lanes: &mut [BodyLanes] = &mut solver.lanes;
     for (i, b) in bodies.iter() {
-        if let Some(sb) = sbodies.get_mut(i.index() as usize) {
-            sb.reload(b);
+        let k = i.index() as usize;
+        if let (Some(sb), Some(lane)) = (sbodies.get_mut(k), lanes.get_mut(k)) {
+            sb.reload(b, lane);
         }
     }
 }
@@ -238,6 +239,7 @@ fn for_each_joint(
     mut f: impl FnMut(&mut Joint, &mut SolverBody, &mut SolverBody),
 ) {
     let bodies: &mut [SolverBody] = &mut solver.bodies;
+    let lanes: &mut [BodyLanes] = &mut solver.lanes;
     let used = joints.slots_used();
     for k in 0..used {
         let i = match order {
@@ -248,17 +250,34 @@ fn for_each_joint(
         let ia = j.def.body_a.index();
         match j.def.body_b {
             Some(hb) => {
-                if let Some((a, b)) = body::pair_at(bodies, ia, hb.index()) {
+                let ib = hb.index();
+                if let (Some((a, b)), Some((la, lb))) =
+                    (body::pair_at(bodies, ia, ib), body::pair_at(lanes, ia, ib))
+                {
+                    a.pull(la);
+                    b.pull(lb);
                     f(j, a, b);
+                    push_dynamic(a, la);
+                    push_dynamic(b, lb);
                 }
             }
             None => {
                 let mut ground = SolverBody::EMPTY;
-                if let Some(a) = bodies.get_mut(ia as usize) {
+                if let (Some(a), Some(la)) = (bodies.get_mut(ia as usize), lanes.get_mut(ia as usize)) {
+                    a.pull(la);
                     f(j, a, &mut ground);
+                    push_dynamic(a, la);
                 }
             }
         }
+    }
+}
+
+/// Moves what a joint did to a dynamic body's `Scalar` velocity into its
+/// lanes.
+fn push_dynamic(sb: &mut SolverBody, lane: &mut BodyLanes) {
+    if sb.dynamic {
+        sb.push(lane);
     }
 }
 
@@ -310,20 +329,22 @@ fn solve_user_constraints(bodies: &mut Arena<'_, Body>, constraints: &mut UserCo
     }
 }
 
-/// The solver's per-step arrays (see [`contact`]).
+/// The solver's per-step arrays (see [`contact`] and [`colour`]).
 pub(crate) struct Solver<'a> {
     /// One per body slot.
     pub(crate) bodies: ManagedSlice<'a, SolverBody>,
-    /// One per arbiter; the first `count` are this step's.
+    /// One per body slot: what the contact kernels read and write.
+    pub(crate) lanes: ManagedSlice<'a, BodyLanes>,
+    /// The contact lanes, eight records a block; as long as the arbiter buffer
+    /// rounded up to a whole block.
     pub(crate) constraints: ManagedSlice<'a, ContactConstraint>,
+    /// Each live arbiter's colour, lane and effective masses this step
+    /// (scratch); as long as the arbiters.
+    pub(crate) scratch: ManagedSlice<'a, ContactScratch>,
+    /// Where each colour's lanes are: the overflow, then colours 0..23.
+    pub(crate) ranges: [(u32, u32); colour::RUNS],
+    /// Lanes in use this step.
     pub(crate) count: usize,
-}
-
-impl Solver<'_> {
-    /// The body array and this step's constraints.
-    fn split(&mut self) -> (&mut [SolverBody], &mut [ContactConstraint]) {
-        let n = self.count;
-        let constraints: &mut [ContactConstraint] = &mut self.constraints;
-        (&mut self.bodies, constraints.get_mut(..n).unwrap_or(&mut []))
-    }
+    /// This step's overflow constraints.
+    pub(crate) overflow: u32,
 }

@@ -86,13 +86,6 @@ impl Row {
         Self { bias: gap * inv_h, mass_scale: scalar::ONE, impulse_scale: ZERO }
     }
 
-    /// Limits a biased row to pushing out at `max_speed` (m/s, ≥ 0: a contact's
-    /// `contact_push_speed`). An unbiased row is unchanged.
-    #[inline(always)]
-    pub(crate) fn pushing_at_most(self, max_speed: Scalar) -> Self {
-        Self { bias: self.bias.max(-max_speed), ..self }
-    }
-
     /// The change of the accumulated impulse `accumulated` for effective mass
     /// `mass` and velocity error `rate`: −m·s_m·(rate + bias) − s_i·λ.
     #[inline(always)]

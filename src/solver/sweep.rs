@@ -4,7 +4,7 @@
 //! flags.
 
 /// The direction of a sweep over the constraints: in their canonical order
-/// (contacts in arbiter order, joints in slot order) or in reverse. A contact's
+/// (contacts in colour order, joints in slot order) or in reverse. A contact's
 /// two points, when solved one at a time, follow the same direction.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Sweep {

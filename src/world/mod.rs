@@ -152,7 +152,15 @@ impl<'a> World<'a> {
             in_step_hooks: false,
             stats: WorldStats { capacities, ..WorldStats::default() },
             joints: Arena::new(s.joints).with_tag(tag),
-            solver: Solver { bodies: s.solver_bodies, constraints: s.contact_constraints, count: 0 },
+            solver: Solver {
+                bodies: s.solver_bodies,
+                lanes: s.solver_lanes,
+                constraints: s.contact_constraints,
+                scratch: s.contact_scratch,
+                ranges: [(0, 0); crate::solver::RUNS],
+                count: 0,
+                overflow: 0,
+            },
             constraints: Arena::inline().with_tag(tag),
             break_callback: None,
             step_count: 0,
@@ -284,6 +292,7 @@ impl<'a> World<'a> {
         s.peak_pairs = s.peak_pairs.max(usize::try_from(wanted).unwrap_or(usize::MAX));
         s.peak_arbiters = s.peak_arbiters.max(self.arbiters.len());
         s.peak_contact_constraints = s.peak_contact_constraints.max(self.solver.count);
+        s.peak_overflow_constraints = s.peak_overflow_constraints.max(self.solver.overflow as usize);
         s.pairs_dropped = s.pairs_dropped.saturating_add(u64::from(r.pairs_dropped));
         s.arbiters_dropped = s.arbiters_dropped.saturating_add(u64::from(r.arbiters_dropped));
         s.post_step_refused = s.post_step_refused.saturating_add(u64::from(r.post_step_refused));

@@ -26,6 +26,10 @@ pub struct WorldStats {
     pub peak_arbiters: usize,
     /// Most contact constraints the solver worked on in one step.
     pub peak_contact_constraints: usize,
+    /// Most contact constraints in the solver's overflow in one step: those
+    /// whose bodies had no graph colour left (crowded piles), solved one at a
+    /// time instead of eight at once.
+    pub peak_overflow_constraints: usize,
     /// Most joints alive at once (the joint slots ever used).
     pub peak_joints: usize,
     /// Most post-step callbacks queued at once.

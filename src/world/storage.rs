@@ -17,7 +17,7 @@ use crate::geometry::PolygonPath;
 use crate::handler::{PostStepEntry, DEFAULT_POST_STEP_CALLBACKS, EMPTY_POST_STEP};
 use crate::index::Proxy;
 use crate::math::{Rect, Vector2};
-use crate::solver::{ContactConstraint, SolverBody};
+use crate::solver::{BodyLanes, ContactConstraint, ContactScratch, SolverBody};
 
 /// How many objects of each kind a world can hold (with the `alloc` feature).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -126,26 +126,37 @@ pub struct Storage<'a> {
     pub(crate) sweep_order: ManagedSlice<'a, u32>,
     /// The solver's copy of each body during a step (scratch), one per body.
     pub(crate) solver_bodies: ManagedSlice<'a, SolverBody>,
-    /// The solver's contact constraints (scratch); as long as `arbiters`.
+    /// The contact kernels' copy of each body's velocity (scratch), one per body.
+    pub(crate) solver_lanes: ManagedSlice<'a, BodyLanes>,
+    /// The solver's contact lanes (scratch); as long as `arbiters`, rounded up
+    /// to a whole block of eight.
     pub(crate) contact_constraints: ManagedSlice<'a, ContactConstraint>,
+    /// Each arbiter's colour, lane and effective masses in a step (scratch);
+    /// as long as `arbiters`.
+    pub(crate) contact_scratch: ManagedSlice<'a, ContactScratch>,
     /// The post-step callback queue; its length is the queue's capacity.
     pub(crate) post_step: ManagedSlice<'a, PostStepEntry>,
 }
 
 impl Storage<'_> {
     /// Bytes per body slot: the body, its broad-phase proxy, the proxy's body
-    /// index, the sort-and-sweep order entry and the solver's copy of the body.
+    /// index, the sort-and-sweep order entry and the solver's copy of the body
+    /// (its `Scalar` state and its lanes).
     pub const BYTES_PER_BODY: usize = size_of::<Slot<Body>>()
         + size_of::<Proxy>()
         + size_of::<u32>()
         + size_of::<u32>()
-        + size_of::<SolverBody>();
+        + size_of::<SolverBody>()
+        + size_of::<BodyLanes>();
     /// Bytes per polygon path slot.
     pub const BYTES_PER_PATH: usize = size_of::<Slot<PolygonPath>>();
     /// Bytes per contact slot: two arbiters (this step's and the next's), a
-    /// candidate pair and the solver's contact constraint.
-    pub const BYTES_PER_CONTACT: usize =
-        2 * size_of::<Arbiter>() + size_of::<(u32, u32)>() + size_of::<ContactConstraint>();
+    /// candidate pair, the solver's contact lane and its scratch. (Heap storage
+    /// rounds the lanes up to a multiple of eight, up to seven more lanes.)
+    pub const BYTES_PER_CONTACT: usize = 2 * size_of::<Arbiter>()
+        + size_of::<(u32, u32)>()
+        + size_of::<ContactConstraint>()
+        + size_of::<ContactScratch>();
     /// Bytes per joint slot: the joint and its entry in the non-colliding pairs.
     pub const BYTES_PER_JOINT: usize = size_of::<Slot<Joint>>() + size_of::<(u32, u32)>();
     /// Bytes per post-step queue slot: the function and its key.
@@ -190,8 +201,14 @@ impl Storage<'_> {
             joint_pairs: ManagedSlice::Owned(filled(c.joints, "joint", || (0, 0))?),
             sweep_order: ManagedSlice::Owned(filled(c.bodies, "sweep order", || 0)?),
             solver_bodies: ManagedSlice::Owned(filled(c.bodies, "solver body", || SolverBody::EMPTY)?),
-            contact_constraints: ManagedSlice::Owned(filled(c.contacts, "contact constraint", || {
-                ContactConstraint::EMPTY
+            solver_lanes: ManagedSlice::Owned(filled(c.bodies, "solver body", || BodyLanes::EMPTY)?),
+            contact_constraints: ManagedSlice::Owned(filled(
+                c.contacts.div_ceil(8).saturating_mul(8),
+                "contact constraint",
+                || ContactConstraint::EMPTY,
+            )?),
+            contact_scratch: ManagedSlice::Owned(filled(c.contacts, "contact scratch", || {
+                ContactScratch::EMPTY
             })?),
             post_step: ManagedSlice::Owned(filled(c.post_step_callbacks, "post-step callback", || {
                 EMPTY_POST_STEP
@@ -201,7 +218,8 @@ impl Storage<'_> {
 }
 
 /// Statically sized buffers for a world that needs no allocator: `BODIES` bodies
-/// and as many polygon paths, `CONTACTS` candidate pairs and arbiters, `JOINTS`
+/// and as many polygon paths, `CONTACTS` candidate pairs and arbiters (a
+/// multiple of 8), `JOINTS`
 /// built-in joints (default 16), `CALLBACKS` queued post-step callbacks
 /// (default [`DEFAULT_POST_STEP_CALLBACKS`], 64). `new` is `const`, so the
 /// buffers can be a `static` (e.g. in a `static_cell::StaticCell`) or a local.
@@ -222,7 +240,9 @@ pub struct WorldBuffers<
     joint_pairs: [(u32, u32); JOINTS],
     sweep_order: [u32; BODIES],
     solver_bodies: [SolverBody; BODIES],
+    solver_lanes: [BodyLanes; BODIES],
     contact_constraints: [ContactConstraint; CONTACTS],
+    contact_scratch: [ContactScratch; CONTACTS],
     post_step: [PostStepEntry; CALLBACKS],
 }
 
@@ -230,8 +250,12 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize, const CALL
     WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS>
 {
     /// Empty buffers.
+    ///
+    /// `CONTACTS` must be a multiple of 8 (the contact solver works in blocks
+    /// of eight lanes); any other value fails to compile.
     #[must_use]
     pub const fn new() -> Self {
+        const { assert!(CONTACTS.is_multiple_of(8), "WorldBuffers: CONTACTS must be a multiple of 8") };
         let empty_proxy = Proxy { aabb: Rect { min: Vector2::ZERO, max: Vector2::ZERO }, is_static: false };
         Self {
             bodies: [Slot::EMPTY; BODIES],
@@ -245,7 +269,9 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize, const CALL
             joint_pairs: [(0, 0); JOINTS],
             sweep_order: [0; BODIES],
             solver_bodies: [SolverBody::EMPTY; BODIES],
+            solver_lanes: [BodyLanes::EMPTY; BODIES],
             contact_constraints: [ContactConstraint::EMPTY; CONTACTS],
+            contact_scratch: [ContactScratch::EMPTY; CONTACTS],
             post_step: [EMPTY_POST_STEP; CALLBACKS],
         }
     }
@@ -264,7 +290,9 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize, const CALL
             joint_pairs: ManagedSlice::Borrowed(&mut self.joint_pairs[..]),
             sweep_order: ManagedSlice::Borrowed(&mut self.sweep_order[..]),
             solver_bodies: ManagedSlice::Borrowed(&mut self.solver_bodies[..]),
+            solver_lanes: ManagedSlice::Borrowed(&mut self.solver_lanes[..]),
             contact_constraints: ManagedSlice::Borrowed(&mut self.contact_constraints[..]),
+            contact_scratch: ManagedSlice::Borrowed(&mut self.contact_scratch[..]),
             post_step: ManagedSlice::Borrowed(&mut self.post_step[..]),
         }
     }

@@ -1,266 +1,227 @@
-//! Building a contact's constraint once per step: the arms, the effective
-//! masses and, for a two-point manifold, the inverse of its 2×2 mass matrix.
+//! Building a contact's lane once per step, in `Scalar`: the arms in body
+//! radii, the mass ratios that replace every effective mass in the sweeps, the
+//! friction factor and, for a two-point manifold, the normalised inverse of its
+//! 2×2 mass matrix.
 //!
-//! Everything here is derived from the arbiter and the bodies at the start of
-//! the step, so that the sweeps ([`super::solve`]) divide only in the rare
-//! block of one soft and one speculative point.
+//! For a row along direction d with arms r_A, r_B, k = 1/m_A + 1/m_B +
+//! (r_A×d)²/I_A + (r_B×d)²/I_B is the inverse of the mass the pair presents.
+//! The lanes carry the impulse as λ̂ = λ·k (m/s) and apply it with ρ = (1/m)/k
+//! (≤ 1) and γ̂ = (r×d)·r_b/(I·k), so no mass, and none of the mass range's 27
+//! bits, ever enters a lane.
 
 use crate::arbiter::Arbiter;
 use crate::body::Body;
-use crate::math::scalar::{self, Scalar, ZERO};
+use crate::math::scalar::{Scalar, ONE, ZERO};
 use crate::math::Vector2;
 use crate::solver::body::inverse_mass;
-use crate::solver::Softness;
+use crate::solver::lanes::{self, ARM_MAX, BLOCK_MAX, FM, FR, FS, FU, FV, GAMMA_MAX, PHI_MAX};
+use crate::solver::SolverBody;
 
-/// What warm starting needs of one contact point: its inertia-scaled arms and
-/// accumulated impulses. Kept apart from the rest of the point (see
-/// [`ContactConstraint`]'s layout).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) struct PointImpulse {
-    /// iA·(rA × n), iB·(rB × n) and iA·(rA × t), iB·(rB × t): the angular
-    /// velocity change per unit impulse.
-    pub(super) irn: [Scalar; 2],
-    pub(super) irt: [Scalar; 2],
-    pub(super) normal_impulse: Scalar,
-    pub(super) tangent_impulse: Scalar,
-    /// The step's sum of the impulses the point ended its sub-steps with, which
-    /// equals the sum of every change applied (warm start plus each sweep's
-    /// increment), added once per sub-step instead of once per change.
-    pub(super) total_normal_impulse: Scalar,
+use super::{f, field_mut, Block, A_DYNAMIC, B_DYNAMIC, HAS_BLOCK, STATIC_PAIR, TWO_POINTS};
+
+/// One body of a pair as prepare sees it: its inverse mass and inertia, and
+/// the radius its rim speed is measured at.
+#[derive(Clone, Copy)]
+struct Side {
+    m: Scalar,
+    i: Scalar,
+    radius: Scalar,
+    inv_radius: Scalar,
 }
 
-impl PointImpulse {
-    const EMPTY: Self = Self {
-        irn: [ZERO; 2],
-        irt: [ZERO; 2],
-        normal_impulse: ZERO,
-        tangent_impulse: ZERO,
-        total_normal_impulse: ZERO,
-    };
-}
-
-/// The rest of one contact point of a [`ContactConstraint`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) struct PointConstraint {
-    /// Separation at the start of the step less n·(pB − pA) then, so that
-    /// adding n·(pB − pA) now gives the separation after the bodies moved.
-    pub(super) base_separation: Scalar,
-    pub(super) normal_mass: Scalar,
-    /// 1 / normal_mass: the diagonal entry of the block's mass matrix.
-    pub(super) normal_k: Scalar,
-    pub(super) tangent_mass: Scalar,
-    /// The fastest approach seen this step (restitution reference).
-    pub(super) relative_velocity: Scalar,
-    /// rA × n, rB × n and rA × t, rB × t.
-    pub(super) rn: [Scalar; 2],
-    pub(super) rt: [Scalar; 2],
-    pub(super) max_normal_impulse: Scalar,
-}
-
-impl PointConstraint {
-    const EMPTY: Self = Self {
-        base_separation: ZERO,
-        normal_mass: ZERO,
-        normal_k: ZERO,
-        tangent_mass: ZERO,
-        relative_velocity: ZERO,
-        rn: [ZERO; 2],
-        rt: [ZERO; 2],
-        max_normal_impulse: ZERO,
-    };
-}
-
-/// A solved arbiter's data for one step (solver scratch, one per arbiter; see
-/// [`Storage`](crate::Storage)).
-///
-/// Laid out for the memory traffic of large scenes, where the constraints do not
-/// fit in cache (Box2D v3's 100-row pyramid has 15,000 of them) and every pass
-/// streams them from memory: seven cache lines, aligned, and what warm starting
-/// reads (the bodies, the linear velocity change per impulse, each point's
-/// impulses and inertia-scaled arms) in the first three.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(C, align(64))]
-pub struct ContactConstraint {
-    /// Body slots.
-    pub(super) a: u32,
-    pub(super) b: u32,
-    /// Index of the arbiter this came from (the write-back target).
-    pub(super) arbiter: u32,
-    pub(super) count: u8,
-    /// One body has infinite mass: the stiffer static softness applies.
-    pub(super) static_pair: bool,
-    /// `block` and `soft_block` hold the two-point block solve's matrices; false
-    /// for one point or an ill-conditioned pair.
-    pub(super) has_block: bool,
-    /// n·mA, n·mB, t·mA, t·mB: the linear velocity change per unit impulse.
-    pub(super) n_m: [Vector2; 2],
-    pub(super) t_m: [Vector2; 2],
-    pub(super) impulses: [PointImpulse; 2],
-    pub(super) normal: Vector2,
-    pub(super) friction: Scalar,
-    /// Off-diagonal entry of the normal mass matrix K.
-    pub(super) k12: Scalar,
-    /// The symmetric inverse of K, `[a, b, d]` for `[[a, b], [b, d]]`.
-    pub(super) block: [Scalar; 3],
-    /// The same for the soft system's matrix (the diagonal divided by the
-    /// pair's mass scale; see [`solve_block`](super::solve::solve_block)) when both points are soft.
-    pub(super) soft_block: [Scalar; 3],
-    pub(super) points: [PointConstraint; 2],
-}
-
-// The layout the comment above describes: warm starting's data in the first
-// three cache lines, the whole in seven.
-const _: () = {
-    assert!(core::mem::offset_of!(ContactConstraint, normal) <= 192);
-    assert!(core::mem::size_of::<ContactConstraint>() == 448);
-};
-
-impl ContactConstraint {
-    /// An unused record.
-    pub const EMPTY: Self = Self {
-        a: 0,
-        b: 0,
-        arbiter: 0,
-        count: 0,
-        static_pair: false,
-        has_block: false,
-        n_m: [Vector2::ZERO; 2],
-        t_m: [Vector2::ZERO; 2],
-        impulses: [PointImpulse::EMPTY; 2],
-        normal: Vector2::ZERO,
-        friction: ZERO,
-        k12: ZERO,
-        block: [ZERO; 3],
-        soft_block: [ZERO; 3],
-        points: [PointConstraint::EMPTY; 2],
-    };
-
-    /// The used points and their impulses.
-    pub(super) fn points(&self) -> impl Iterator<Item = (&PointConstraint, &PointImpulse)> {
-        self.points.iter().zip(self.impulses.iter()).take(usize::from(self.count))
+impl Side {
+    fn new(b: &Body, sb: &SolverBody) -> Self {
+        let (m, i) = inverse_mass(b);
+        Self { m, i, radius: sb.radius, inv_radius: sb.inv_radius }
     }
 
-    /// The used points and their impulses, mutably.
-    pub(super) fn points_mut(&mut self) -> impl Iterator<Item = (&mut PointConstraint, &mut PointImpulse)> {
-        let count = usize::from(self.count);
-        self.points.iter_mut().zip(self.impulses.iter_mut()).take(count)
+    /// The arm (r×d) in body radii, clamped to ±[`ARM_MAX`].
+    fn arm(&self, rd: Scalar) -> i32 {
+        lanes::from_scalar(rd * self.inv_radius, FR, ARM_MAX)
+    }
+
+    /// The rim ratio γ̂ = (r×d)·r_b·(1/I)·m_eff, clamped to ±[`GAMMA_MAX`].
+    fn gamma(&self, rd: Scalar, m_eff: Scalar) -> i32 {
+        let g = (self.i * rd * m_eff * self.radius).clamp(-GAMMA_MAX, GAMMA_MAX);
+        lanes::from_scalar(g, FU, 2)
     }
 }
 
-impl Default for ContactConstraint {
-    fn default() -> Self {
-        Self::EMPTY
+/// Writes `x` into lane `l` of field `fi`.
+#[inline(always)]
+fn put(blk: &mut Block, fi: usize, l: usize, x: i32) {
+    if let Some(dst) = field_mut(blk, fi).get_mut(l) {
+        *dst = x;
     }
 }
 
-/// Per-step solver settings.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct StepParams {
-    pub(crate) inv_h: Scalar,
-    pub(crate) soft: Softness,
-    pub(crate) static_soft: Softness,
-    pub(crate) push_speed: Scalar,
+/// 1/(1/m_A + 1/m_B + (r_A×d)²/I_A + (r_B×d)²/I_B) for arms (r×d) `ra`, `rb`.
+fn k(a: &Side, b: &Side, ra: Scalar, rb: Scalar) -> Scalar {
+    a.m + b.m + a.i * (ra * ra) + b.i * (rb * rb)
 }
 
-/// Builds, in `c`, the constraint of arbiter `index` (which is solved this
-/// step) between bodies `a` and `b` in slots `ia`, `ib`.
+/// Builds lane `l` of `blk` from an arbiter between bodies `a` and `b` (slots
+/// `ia`, `ib`; at least one dynamic); the scales are the mass scales of the
+/// contact and static softness. Returns each point's normal and tangent
+/// effective mass, for the store.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn prepare(
-    index: u32,
     arb: &Arbiter,
     (ia, ib): (u32, u32),
     (a, b): (&Body, &Body),
-    params: &StepParams,
-    c: &mut ContactConstraint,
-) {
-    let ((ma, iia), (mb, iib)) = (inverse_mass(a), inverse_mass(b));
+    (sa, sb): (&SolverBody, &SolverBody),
+    (contact_scale, static_scale): (Scalar, Scalar),
+    blk: &mut Block,
+    l: usize,
+) -> [[Scalar; 2]; 2] {
+    let mut masses = [[ZERO; 2]; 2];
+    let (side_a, side_b) = (Side::new(a, sa), Side::new(b, sb));
     let n = arb.normal;
     let t = n.right_perp();
-    *c = ContactConstraint {
-        arbiter: index,
-        a: ia,
-        b: ib,
-        normal: n,
-        friction: arb.friction,
-        count: arb.count.min(2),
-        ..ContactConstraint::EMPTY
-    };
-    let n0 = (b.position - a.position).dot(n);
-    for ((cp, ci), src) in c.points_mut().zip(arb.points.iter()) {
-        let (ra, rb) = (src.anchor_a, src.anchor_b);
-        cp.base_separation = src.separation - n0;
-        let k = mass_matrix(ma, mb, iia, iib, ra, rb, n);
-        cp.normal_k = k;
-        cp.normal_mass = k.recip();
-        cp.tangent_mass = mass_matrix(ma, mb, iia, iib, ra, rb, t).recip();
-        let dv = b.velocity_at_offset(rb) - a.velocity_at_offset(ra);
-        cp.relative_velocity = dv.dot(n);
-        cp.rn = [ra.cross(n), rb.cross(n)];
-        cp.rt = [ra.cross(t), rb.cross(t)];
-        ci.irn = [iia * cp.rn[0], iib * cp.rn[1]];
-        ci.irt = [iia * cp.rt[0], iib * cp.rt[1]];
-        ci.normal_impulse = src.normal_impulse;
-        ci.tangent_impulse = src.tangent_impulse;
+    let count = usize::from(arb.count.min(2));
+    let static_pair = side_a.m == ZERO || side_b.m == ZERO;
+    let mut flags = 0;
+    if sa.dynamic {
+        flags |= A_DYNAMIC;
     }
-    let ([p1, p2], [i1, _]) = (&c.points, &c.impulses);
-    c.k12 = ma + mb + i1.irn[0] * p2.rn[0] + i1.irn[1] * p2.rn[1];
-    c.static_pair = ma == ZERO || mb == ZERO;
-    if let Some(rigid) = block_inverse(c) {
-        let ms = if c.static_pair { params.static_soft.mass_scale } else { params.soft.mass_scale };
-        let (u1, u2) = (p1.normal_mass * ms, p2.normal_mass * ms);
-        if let Some(soft) = inverse_from_diagonal_inverses(u1, u2, c.k12) {
-            (c.block, c.soft_block, c.has_block) = (rigid, soft, true);
+    if sb.dynamic {
+        flags |= B_DYNAMIC;
+    }
+    if static_pair {
+        flags |= STATIC_PAIR;
+    }
+    put(blk, f::IA, l, ia as i32);
+    put(blk, f::IB, l, ib as i32);
+    put(blk, f::NX, l, lanes::from_scalar(n.x, FU, 1));
+    put(blk, f::NY, l, lanes::from_scalar(n.y, FU, 1));
+    put(blk, f::E, l, lanes::from_scalar(arb.restitution, FU, 1));
+    let mut kn = [ONE; 2];
+    let mut rn = [(ZERO, ZERO); 2];
+    for (p, src) in arb.points.iter().enumerate() {
+        let base = f::P[p % 2];
+        if p >= count {
+            // An unused point: nothing pushes, nothing is applied.
+            for x in 0..f::POINT {
+                put(blk, base + x, l, 0);
+            }
+            continue;
+        }
+        let (ra, rb) = (src.anchor_a, src.anchor_b);
+        let (rna, rnb, rta, rtb) = (ra.cross(n), rb.cross(n), ra.cross(t), rb.cross(t));
+        let k_n = k(&side_a, &side_b, rna, rnb);
+        let k_t = k(&side_a, &side_b, rta, rtb);
+        let (m_n, m_t) = (k_n.recip(), k_t.recip());
+        kn[p % 2] = k_n;
+        rn[p % 2] = (rna, rnb);
+        put(blk, base + f::RAN, l, side_a.arm(rna));
+        put(blk, base + f::RBN, l, side_b.arm(rnb));
+        put(blk, base + f::RAT, l, side_a.arm(rta));
+        put(blk, base + f::RBT, l, side_b.arm(rtb));
+        let ratio = |m: Scalar, me: Scalar, d: Vector2| {
+            let r = (m * me).min(ONE);
+            (lanes::from_scalar(d.x * r, FU, 1), lanes::from_scalar(d.y * r, FU, 1))
+        };
+        let (anx, any) = ratio(side_a.m, m_n, n);
+        let (bnx, bny) = ratio(side_b.m, m_n, n);
+        let (atx, aty) = ratio(side_a.m, m_t, t);
+        let (btx, bty) = ratio(side_b.m, m_t, t);
+        for (fi, x) in [
+            (f::ANX, anx),
+            (f::ANY, any),
+            (f::BNX, bnx),
+            (f::BNY, bny),
+            (f::GAN, side_a.gamma(rna, m_n)),
+            (f::GBN, side_b.gamma(rnb, m_n)),
+            (f::ATX, atx),
+            (f::ATY, aty),
+            (f::BTX, btx),
+            (f::BTY, bty),
+            (f::GAT, side_a.gamma(rta, m_t)),
+            (f::GBT, side_b.gamma(rtb, m_t)),
+        ] {
+            put(blk, base + fi, l, x);
+        }
+        let lambda_max = lanes::to_scalar(lanes::LAMBDA_MAX, FV);
+        let ln = (src.normal_impulse * k_n).clamp(ZERO, lambda_max);
+        let lt = (src.tangent_impulse * k_t).clamp(-lambda_max, lambda_max);
+        put(blk, base + f::LN, l, lanes::from_scalar(ln, FV, 8192));
+        put(blk, base + f::LT, l, lanes::from_scalar(lt, FV, 8192));
+        put(blk, base + f::BASE, l, lanes::from_scalar(src.separation, FS, 4095));
+        // |λ_t| ≤ μ·λ_n ⇔ |λ̂_t| ≤ μ·(k_t/k_n)·λ̂_n; φ·min(λ̂_n, c_φ) ≤ Λ.
+        let phi = (arb.friction * k_t * m_n).min(Scalar::from_int(PHI_MAX as i32 - 1));
+        let c_phi = if phi > ONE { lambda_max.div_or_zero(phi) } else { lambda_max };
+        put(blk, base + f::PHI, l, lanes::from_scalar(phi, lanes::FPHI, PHI_MAX));
+        put(blk, base + f::CPHI, l, lanes::from_scalar(c_phi, FV, 8192));
+        let dv = b.velocity_at_offset(rb) - a.velocity_at_offset(ra);
+        put(blk, base + f::VREL, l, lanes::velocity(dv.dot(n)));
+        put(blk, base + f::MAXD, l, 0);
+        put(blk, base + f::TOT, l, 0);
+        if let Some(m) = masses.get_mut(p) {
+            *m = [m_n, m_t];
         }
     }
-    c.n_m = [n * ma, n * mb];
-    c.t_m = [t * ma, t * mb];
+    if count == 2 {
+        flags |= TWO_POINTS;
+        let k12 = side_a.m + side_b.m + side_a.i * (rn[0].0 * rn[1].0) + side_b.i * (rn[0].1 * rn[1].1);
+        let scale = if static_pair { static_scale } else { contact_scale };
+        if let Some(block) = block_inverse(kn, [masses[0][0], masses[1][0]], k12, scale) {
+            flags |= HAS_BLOCK;
+            let [c12, c21, r11, r12, r21, r22, s11, s12, s21, s22] = block;
+            put(blk, f::C12, l, c12);
+            put(blk, f::C21, l, c21);
+            for (j, x) in [r11, r12, r21, r22].into_iter().enumerate() {
+                put(blk, f::MR + j, l, x);
+            }
+            for (j, x) in [s11, s12, s21, s22].into_iter().enumerate() {
+                put(blk, f::MS + j, l, x);
+            }
+        }
+    }
+    put(blk, f::FLAGS, l, flags);
+    masses
 }
 
-/// mA + mB + iA·(rA × d)² + iB·(rB × d)²: the inverse of the mass the pair
-/// presents to an impulse along `d` at anchors `ra`, `rb` (0 if infinite).
-#[allow(clippy::too_many_arguments)]
-fn mass_matrix(
-    ma: Scalar,
-    mb: Scalar,
-    ia: Scalar,
-    ib: Scalar,
-    ra: Vector2,
-    rb: Vector2,
-    d: Vector2,
-) -> Scalar {
-    let (rda, rdb) = (ra.cross(d), rb.cross(d));
-    ma + mb + ia * (rda * rda) + ib * (rdb * rdb)
-}
-
-/// The inverse of the 2×2 normal mass matrix K of a two-point manifold, `[a, b, d]`
-/// for the symmetric `[[a, b], [b, d]]`, when K is well conditioned
-/// (k11² < 1000·det K, Box2D's test); otherwise `None` and the points are solved
-/// one at a time.
-fn block_inverse(c: &ContactConstraint) -> Option<[Scalar; 3]> {
-    if c.count != 2 {
+/// The couplings c12 = k12/k22, c21 = k12/k11 (`m` holds 1/k11, 1/k22) and the
+/// normalised inverses
+/// M̂ = D·K⁻¹ (D = diag(k11, k22)) of the rigid system and of the soft one
+/// (diagonal k_ii/s), when the pair is well conditioned: the diagonal
+/// entries within a factor 4 of each other and every entry of M̂ below
+/// [`BLOCK_MAX`]; otherwise `None` and the points are solved one at a time.
+///
+/// With ρ² = c12·c21 = k12²/(k11·k22) ≤ 1 and a mass scale s,
+/// M̂ = 1/(1 − s²ρ²)·[[s, −s²·c12], [−s²·c21, s]].
+fn block_inverse(k: [Scalar; 2], m: [Scalar; 2], k12: Scalar, s: Scalar) -> Option<[i32; 10]> {
+    let [k11, k22] = k;
+    let four = Scalar::from_int(4);
+    if k11 <= ZERO || k22 <= ZERO || k11 > k22 * four || k22 > k11 * four {
         return None;
     }
-    let [p1, p2] = &c.points;
-    let (k11, k22, k12) = (p1.normal_k, p2.normal_k, c.k12);
-    let det = k11 * k22 - k12 * k12;
-    if det <= ZERO || k11 * k11 >= det * Scalar::from_int(1000) {
-        return None;
-    }
-    let inv = det.recip();
-    Some([k22 * inv, -k12 * inv, k11 * inv])
-}
-
-/// The inverse of the symmetric 2×2 matrix with diagonal entries 1/`u1`, 1/`u2`
-/// and off-diagonal entry `k12`, `[a, b, d]` as in [`block_inverse`], or `None`
-/// when it is singular. Formed from the inverses of the diagonal entries so that no product
-/// of two diagonal entries (which can be large for light bodies) is needed:
-/// K⁻¹ = 1/(1 − ρ) · [u1, −k12·u1·u2; −k12·u1·u2, u2] with ρ = k12²·u1·u2.
-pub(super) fn inverse_from_diagonal_inverses(u1: Scalar, u2: Scalar, k12: Scalar) -> Option<[Scalar; 3]> {
-    let (a, b) = (k12 * u1, k12 * u2);
-    let rest = scalar::ONE - a * b;
-    if rest <= ZERO {
-        return None;
-    }
-    let m = rest.recip();
-    let off = -(a * u2 * m);
-    Some([u1 * m, off, u2 * m])
+    // k12/k22 and k12/k11, by the effective masses already computed.
+    let (c12, c21) = (k12 * m[1], k12 * m[0]);
+    let rho2 = c12 * c21;
+    let inverse = |s: Scalar| -> Option<[Scalar; 4]> {
+        let ss = s * s;
+        let det = ONE - ss * rho2;
+        if det <= ZERO {
+            return None;
+        }
+        let m = det.recip();
+        let e = [s * m, -(ss * c12 * m), -(ss * c21 * m), s * m];
+        e.iter().all(|x| x.abs() < BLOCK_MAX).then_some(e)
+    };
+    let rigid = inverse(ONE)?;
+    let soft = inverse(s)?;
+    let q = |x: Scalar| lanes::from_scalar(x, FM, 16);
+    Some([
+        lanes::from_scalar(c12, FR, 2),
+        lanes::from_scalar(c21, FR, 2),
+        q(rigid[0]),
+        q(rigid[1]),
+        q(rigid[2]),
+        q(rigid[3]),
+        q(soft[0]),
+        q(soft[1]),
+        q(soft[2]),
+        q(soft[3]),
+    ])
 }

@@ -1,0 +1,802 @@
+//! The contact kernels: warm start, the biased and relax sweeps (both points of
+//! a two-point manifold solved together as a 2×2 block), and the restitution
+//! pass, on `W` lanes of a block at a time.
+//!
+//! Each kernel is written once over [`L`] lane vectors and instantiated for
+//! the eight lanes of a block (a colour's constraints share no dynamic body,
+//! so eight of them can be solved at once) and for one lane (the overflow,
+//! solved in key order). Every operation is lane-wise integer arithmetic with
+//! the rounding of [`lanes::mul`], so every width and every instruction set
+//! computes the same bits; the only reductions over lanes ([`M::any`]) decide
+//! whether to run work whose results all lanes would discard.
+//!
+//! The algorithm is the soft step's: per point, the separation is re-evaluated
+//! from how far the bodies moved and turned since the step began, linearised
+//! in the turn (s = s₀ + n·Δ(dp) + δ̂_B·r̂_B − δ̂_A·r̂_A; the neglected term only
+//! makes s smaller, so the estimate errs towards contact); a point still apart
+//! is speculative (it may close its gap within the sub-step, no more), one in
+//! contact is a soft spring-damper pushing out at no more than the push speed,
+//! and every row is rigid and unbiased in the relax sweeps.
+
+use crate::math::scalar::Scalar;
+use crate::solver::body::{DPX, DPY, DR, VX, VY, W as WR};
+use crate::solver::colour::Kernel;
+use crate::solver::lanes::{self, FPHI, FQ, FR, FS, FU, L, L64, LAMBDA_MAX, LANES, M, SPEC_BIAS_MAX, V_WALL};
+use crate::solver::{Bias, BodyLanes, Softness};
+use crate::step::StepContext;
+
+use super::{f, field, field_mut, Block, A_DYNAMIC, B_DYNAMIC, HAS_BLOCK, STATIC_PAIR, TWO_POINTS};
+
+/// One in Q2.30.
+const ONE: i32 = 1 << FU;
+
+/// A softness in lanes.
+#[derive(Clone, Copy, Debug)]
+struct LaneSoft {
+    /// Bias rate (Q22.10), mass scale and impulse scale (Q2.30).
+    beta: i32,
+    sm: i32,
+    si: i32,
+    /// The deepest separation whose bias is not already the push speed
+    /// (Q13.19): clamping s there keeps s·β in range and changes nothing.
+    floor: i32,
+}
+
+/// The step's constants in lanes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LaneParams {
+    /// 1/h (Q22.10).
+    inv_h: i32,
+    /// [`SPEC_BIAS_MAX`]·h (Q13.19): the largest gap whose bias is below the cap.
+    spec_cap: i32,
+    /// The push speed (Q16.16).
+    push: i32,
+    /// The restitution threshold (Q16.16).
+    threshold: i32,
+    /// Contact and static softness.
+    soft: [LaneSoft; 2],
+}
+
+impl LaneParams {
+    /// The lanes' form of the step's solver settings.
+    pub(crate) fn new(ctx: &StepContext) -> Self {
+        let push = ctx.push_speed;
+        let soft = |s: &Softness| {
+            let floor = if s.bias_rate > Scalar::ZERO {
+                push.div_or_zero(s.bias_rate).min(Scalar::from_int(4095))
+            } else {
+                Scalar::from_int(4095)
+            };
+            LaneSoft {
+                beta: lanes::from_scalar(s.bias_rate, FQ, 1 << 21),
+                sm: lanes::from_scalar(s.mass_scale, FU, 1),
+                si: lanes::from_scalar(s.impulse_scale, FU, 1),
+                floor: lanes::from_scalar(floor, FS, 4095),
+            }
+        };
+        Self {
+            inv_h: lanes::from_scalar(ctx.inv_h, FQ, 1 << 21),
+            spec_cap: lanes::from_scalar(ctx.h * Scalar::from_int(SPEC_BIAS_MAX as i32), FS, 4095),
+            push: lanes::velocity(push),
+            threshold: lanes::velocity(ctx.restitution_threshold),
+            soft: [soft(&ctx.contact_softness), soft(&ctx.static_softness)],
+        }
+    }
+}
+
+/// Runs `$body` for each point of a manifold with `$k` a constant (0, then 1),
+/// so that every field number in it is known at compile time.
+macro_rules! each_point {
+    ($k:ident => $body:block) => {{
+        {
+            const $k: usize = 0;
+            $body
+        }
+        {
+            const $k: usize = 1;
+            $body
+        }
+    }};
+}
+
+/// Lanes `base..base + W` of a block.
+struct View<'b, const W: usize> {
+    blk: &'b mut Block,
+    base: usize,
+}
+
+impl<const W: usize> View<'_, W> {
+    #[inline(always)]
+    fn ld(&self, fi: usize) -> L<W> {
+        let row = field(self.blk, fi);
+        let mut r = [0; W];
+        for (i, x) in r.iter_mut().enumerate() {
+            *x = super::lane(row, self.base + i);
+        }
+        L(r)
+    }
+
+    /// Stores the lanes of `x` that `m` selects.
+    #[inline(always)]
+    fn st(&mut self, fi: usize, x: L<W>, m: M<W>) {
+        let x = self.ld(fi).select(m, x);
+        let row = field_mut(self.blk, fi);
+        for (i, &x) in x.0.iter().enumerate() {
+            row[(self.base + i) % LANES] = x;
+        }
+    }
+
+    /// Point `p`'s field `x`.
+    #[inline(always)]
+    fn pt(&self, p: usize, x: usize) -> L<W> {
+        self.ld(f::P[p % 2] + x)
+    }
+}
+
+/// A body's velocity lanes: v_x, v_y, ŵ.
+type Vel<const W: usize> = [L<W>; 3];
+/// A body's motion since the step began: dp_x, dp_y, δ̂.
+type Pose<const W: usize> = [L<W>; 3];
+
+/// Reads the velocity and motion of the bodies in `idx`'s lanes.
+#[inline(always)]
+fn gather<const W: usize>(bodies: &[BodyLanes], idx: L<W>) -> (Vel<W>, Pose<W>) {
+    let mut v = [[0; W]; 6];
+    for (i, &b) in idx.0.iter().enumerate() {
+        let lane = match bodies.get(b as u32 as usize) {
+            Some(b) => b.0,
+            None => [0; 8],
+        };
+        v[0][i] = lane[VX];
+        v[1][i] = lane[VY];
+        v[2][i] = lane[WR];
+        v[3][i] = lane[DPX];
+        v[4][i] = lane[DPY];
+        v[5][i] = lane[DR];
+    }
+    let [vx, vy, w, dpx, dpy, dr] = v;
+    ([L(vx), L(vy), L(w)], [L(dpx), L(dpy), L(dr)])
+}
+
+/// Writes back the velocity of the bodies in `idx`'s lanes that `m` selects.
+#[inline(always)]
+fn scatter<const W: usize>(bodies: &mut [BodyLanes], idx: L<W>, v: &Vel<W>, m: M<W>) {
+    for i in 0..W {
+        if m.is(i) {
+            if let Some(b) = bodies.get_mut(idx.0[i] as u32 as usize) {
+                b.0[VX] = v[0].0[i];
+                b.0[VY] = v[1].0[i];
+                b.0[WR] = v[2].0[i];
+            }
+        }
+    }
+}
+
+/// One row's factors: ρ_A·d, γ̂_A, ρ_B·d, γ̂_B.
+#[derive(Clone, Copy)]
+struct Ratios<const W: usize> {
+    ax: L<W>,
+    ay: L<W>,
+    ga: L<W>,
+    bx: L<W>,
+    by: L<W>,
+    gb: L<W>,
+}
+
+impl<const W: usize> Ratios<W> {
+    /// Point `p`'s normal row.
+    #[inline(always)]
+    fn normal(v: &View<'_, W>, p: usize) -> Self {
+        Self {
+            ax: v.pt(p, f::ANX),
+            ay: v.pt(p, f::ANY),
+            ga: v.pt(p, f::GAN),
+            bx: v.pt(p, f::BNX),
+            by: v.pt(p, f::BNY),
+            gb: v.pt(p, f::GBN),
+        }
+    }
+
+    /// Point `p`'s tangent row.
+    #[inline(always)]
+    fn tangent(v: &View<'_, W>, p: usize) -> Self {
+        Self {
+            ax: v.pt(p, f::ATX),
+            ay: v.pt(p, f::ATY),
+            ga: v.pt(p, f::GAT),
+            bx: v.pt(p, f::BTX),
+            by: v.pt(p, f::BTY),
+            gb: v.pt(p, f::GBT),
+        }
+    }
+
+    /// Applies a change `d` of the row's impulse (velocity units), walled.
+    #[inline(always)]
+    fn apply(&self, a: &mut Vel<W>, b: &mut Vel<W>, d: L<W>) {
+        a[0] = a[0].sub(self.ax.mul::<FU>(d)).clamp_abs(V_WALL);
+        a[1] = a[1].sub(self.ay.mul::<FU>(d)).clamp_abs(V_WALL);
+        a[2] = a[2].sub(self.ga.mul::<FU>(d)).clamp_abs(V_WALL);
+        b[0] = b[0].add(self.bx.mul::<FU>(d)).clamp_abs(V_WALL);
+        b[1] = b[1].add(self.by.mul::<FU>(d)).clamp_abs(V_WALL);
+        b[2] = b[2].add(self.gb.mul::<FU>(d)).clamp_abs(V_WALL);
+    }
+}
+
+/// Applies two normal changes at once (the block): one wall clamp after the
+/// sum, which is bounded by V_WALL + 2·γ̂·Λ, inside the format.
+#[inline(always)]
+fn apply_both<const W: usize>(r: &[Ratios<W>; 2], a: &mut Vel<W>, b: &mut Vel<W>, d: [L<W>; 2]) {
+    let [r0, r1] = r;
+    let [d0, d1] = d;
+    a[0] = a[0].sub(r0.ax.mul::<FU>(d0)).sub(r1.ax.mul::<FU>(d1)).clamp_abs(V_WALL);
+    a[1] = a[1].sub(r0.ay.mul::<FU>(d0)).sub(r1.ay.mul::<FU>(d1)).clamp_abs(V_WALL);
+    a[2] = a[2].sub(r0.ga.mul::<FU>(d0)).sub(r1.ga.mul::<FU>(d1)).clamp_abs(V_WALL);
+    b[0] = b[0].add(r0.bx.mul::<FU>(d0)).add(r1.bx.mul::<FU>(d1)).clamp_abs(V_WALL);
+    b[1] = b[1].add(r0.by.mul::<FU>(d0)).add(r1.by.mul::<FU>(d1)).clamp_abs(V_WALL);
+    b[2] = b[2].add(r0.gb.mul::<FU>(d0)).add(r1.gb.mul::<FU>(d1)).clamp_abs(V_WALL);
+}
+
+/// Relative speed of a point along (dx, dy) with arms `ra`, `rb` in body
+/// radii: d·(v_B − v_A) + ŵ_B·r̂_B − ŵ_A·r̂_A.
+#[inline(always)]
+fn speed<const W: usize>(a: &Vel<W>, b: &Vel<W>, d: (L<W>, L<W>), ra: L<W>, rb: L<W>) -> L<W> {
+    d.0.mul::<FU>(b[0].sub(a[0]))
+        .add(d.1.mul::<FU>(b[1].sub(a[1])))
+        .add(b[2].mul::<FR>(rb))
+        .sub(a[2].mul::<FR>(ra))
+}
+
+/// Applies every point's accumulated impulses again (the warm start). With
+/// `count_totals` (every sub-step after the first) it also adds the normal
+/// impulses to the step's totals: they are what the sub-step before ended with.
+#[inline(always)]
+pub(crate) fn warm_start<const W: usize>(
+    blk: &mut Block,
+    base: usize,
+    active: M<W>,
+    bodies: &mut [BodyLanes],
+    count_totals: bool,
+) {
+    let mut v = View::<W> { blk, base };
+    let (ia, ib, flags) = (v.ld(f::IA), v.ld(f::IB), v.ld(f::FLAGS));
+    let (mut a, _) = gather(bodies, ia);
+    let (mut b, _) = gather(bodies, ib);
+    each_point!(P => {
+        let (ln, lt) = (v.pt(P, f::LN), v.pt(P, f::LT));
+        Ratios::normal(&v, P).apply(&mut a, &mut b, ln);
+        Ratios::tangent(&v, P).apply(&mut a, &mut b, lt);
+        if count_totals {
+            // Q16.16 → Q18.14, rounded half up.
+            let carried = ln.add(L::splat(2)).shr2();
+            let tot = v.pt(P, f::TOT).add(carried);
+            v.st(f::P[P] + f::TOT, tot, active);
+        }
+    });
+    scatter(bodies, ia, &a, flags.has(A_DYNAMIC).and(active));
+    scatter(bodies, ib, &b, flags.has(B_DYNAMIC).and(active));
+}
+
+/// The per-point state a sweep updates.
+#[derive(Clone, Copy)]
+struct State<const W: usize> {
+    a: Vel<W>,
+    b: Vel<W>,
+    ln: [L<W>; 2],
+    vrel: [L<W>; 2],
+    maxd: [L<W>; 2],
+}
+
+impl<const W: usize> State<W> {
+    /// The lanes of `o` where `m`, else of `self`.
+    #[inline(always)]
+    fn select(mut self, m: M<W>, o: &Self) -> Self {
+        for k in 0..3 {
+            self.a[k] = self.a[k].select(m, o.a[k]);
+            self.b[k] = self.b[k].select(m, o.b[k]);
+        }
+        for k in 0..2 {
+            self.ln[k] = self.ln[k].select(m, o.ln[k]);
+            self.vrel[k] = self.vrel[k].select(m, o.vrel[k]);
+            self.maxd[k] = self.maxd[k].select(m, o.maxd[k]);
+        }
+        self
+    }
+
+    /// Sets point `p`'s normal impulse to `new` (for the approach speed `vn`)
+    /// and returns the change: notes the fastest approach of a pushing point
+    /// as its restitution reference, and the largest change of the step.
+    #[inline(always)]
+    fn set_normal(&mut self, p: usize, new: L<W>, vn: L<W>) -> L<W> {
+        let p = p % 2;
+        let d = new.sub(self.ln[p]);
+        let pushing = new.gt(L::splat(0));
+        self.vrel[p] = self.vrel[p].select(pushing, self.vrel[p].min(vn));
+        self.maxd[p] = self.maxd[p].max(d);
+        self.ln[p] = new;
+        d
+    }
+}
+
+/// One row's bias and scales for this sweep.
+#[derive(Clone, Copy)]
+struct Row<const W: usize> {
+    bias: L<W>,
+    sm: L<W>,
+    si: L<W>,
+    speculative: M<W>,
+}
+
+/// The softness of each lane's pair, for a biased sweep.
+#[derive(Clone, Copy)]
+struct Soft<const W: usize> {
+    beta: L<W>,
+    sm: L<W>,
+    si: L<W>,
+    floor: L<W>,
+}
+
+/// Point `p`'s row: speculative while apart, else soft (biased sweep) or
+/// rigid (relax), from the separation linearised in the motion since the
+/// step began.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn row<const W: usize>(
+    v: &View<'_, W>,
+    p: usize,
+    dpn: L<W>,
+    pa: &Pose<W>,
+    pb: &Pose<W>,
+    soft: &Soft<W>,
+    params: &LaneParams,
+    bias: Bias,
+) -> Row<W> {
+    let zero = L::splat(0);
+    let s =
+        v.pt(p, f::BASE).add(dpn).add(pb[2].mul::<30>(v.pt(p, f::RBN))).sub(pa[2].mul::<30>(v.pt(p, f::RAN)));
+    let speculative = s.gt(zero);
+    // Q13.19 × Q22.10 → Q16.16.
+    let spec_bias = s.min(L::splat(params.spec_cap)).mul::<13>(L::splat(params.inv_h));
+    let (soft_bias, sm, si) = match bias {
+        Bias::On => {
+            (s.max(soft.floor.neg()).mul::<13>(soft.beta).max(L::splat(-params.push)), soft.sm, soft.si)
+        }
+        Bias::Off => (zero, L::splat(ONE), zero),
+    };
+    Row {
+        bias: soft_bias.select(speculative, spec_bias),
+        sm: sm.select(speculative, L::splat(ONE)),
+        si: si.select(speculative, zero),
+        speculative,
+    }
+}
+
+/// The 2×2 block on lanes `want`: the exact solution of the two points'
+/// complementarity problem in normalised impulses (both push, only the
+/// first, only the second, neither), with the right-hand side in Q17.15 and
+/// the products in 64-bit lanes. Returns the new impulses (clamped to
+/// [0, Λ]) and the lanes where one of the cases fits.
+#[inline(always)]
+fn block<const W: usize>(
+    v: &View<'_, W>,
+    want: M<W>,
+    soft_block: M<W>,
+    vn: [L<W>; 2],
+    rows: &[Row<W>; 2],
+    ln: [L<W>; 2],
+) -> ([L<W>; 2], M<W>) {
+    let (c12, c21) = (v.ld(f::C12), v.ld(f::C21));
+    let m = [
+        v.ld(f::MR).select(soft_block, v.ld(f::MS)),
+        v.ld(f::MR + 1).select(soft_block, v.ld(f::MS + 1)),
+        v.ld(f::MR + 2).select(soft_block, v.ld(f::MS + 2)),
+        v.ld(f::MR + 3).select(soft_block, v.ld(f::MS + 3)),
+    ];
+    // q_i = vn_i + bias_i − λ̂_i − c_ij·λ̂_j, up to 42,657 m/s: Q16.16 in 64
+    // bits, and Q17.15 for the products.
+    let q1 = L64::from(vn[0])
+        .add(L64::from(rows[0].bias))
+        .sub(L64::from(ln[0]))
+        .sub(L64::from(c12.mul::<FR>(ln[1])));
+    let q2 = L64::from(vn[1])
+        .add(L64::from(rows[1].bias))
+        .sub(L64::from(ln[1]))
+        .sub(L64::from(c21.mul::<FR>(ln[0])));
+    let (h1, h2) = (q1.narrow_shr1(), q2.narrow_shr1());
+    // Q5.27 × Q17.15 → Q16.16: shift 26.
+    let x1 = L64::mul_shift::<26>(m[0], h1).add(L64::mul_shift::<26>(m[1], h2)).neg();
+    let x2 = L64::mul_shift::<26>(m[2], h1).add(L64::mul_shift::<26>(m[3], h2)).neg();
+    // Q2.30 × Q17.15 → Q16.16: shift 29.
+    let y1 = L64::mul_shift::<29>(rows[0].sm, h1).neg();
+    let y2 = L64::mul_shift::<29>(rows[1].sm, h2).neg();
+    let (y1c, y2c) = (y1.clamp_narrow(LAMBDA_MAX), y2.clamp_narrow(LAMBDA_MAX));
+    let both = x1.nonneg().and(x2.nonneg());
+    let first = both.not().and(y1.nonneg()).and(q2.add(L64::mul_shift::<FR>(c21, y1c)).nonneg());
+    let second = both.or(first).not().and(y2.nonneg()).and(q1.add(L64::mul_shift::<FR>(c12, y2c)).nonneg());
+    let neither = both.or(first).or(second).not().and(q1.nonneg()).and(q2.nonneg());
+    let zero = L::splat(0);
+    let r1 = zero.select(first, y1c).select(both, x1.clamp_narrow(LAMBDA_MAX));
+    let r2 = zero.select(second, y2c).select(both, x2.clamp_narrow(LAMBDA_MAX));
+    let ok = both.or(first).or(second).or(neither).and(want);
+    ([r1, r2], ok)
+}
+
+/// One sweep over lanes `base..base + W` of a block (`active` ones only):
+/// normal points (as a block where the pair allows, else one at a time in the
+/// sweep's direction), then friction.
+#[inline(always)]
+pub(crate) fn sweep<const W: usize>(
+    blk: &mut Block,
+    base: usize,
+    active: M<W>,
+    bodies: &mut [BodyLanes],
+    params: &LaneParams,
+    bias: Bias,
+    reverse: bool,
+) {
+    let mut v = View::<W> { blk, base };
+    let (ia, ib, flags) = (v.ld(f::IA), v.ld(f::IB), v.ld(f::FLAGS));
+    let (a, pa) = gather(bodies, ia);
+    let (b, pb) = gather(bodies, ib);
+    let n = (v.ld(f::NX), v.ld(f::NY));
+    let t = (n.1, n.0.neg());
+    let two = flags.has(TWO_POINTS);
+    let static_pair = flags.has(STATIC_PAIR);
+    let [c, st] = params.soft;
+    let soft = Soft {
+        beta: L::splat(c.beta).select(static_pair, L::splat(st.beta)),
+        sm: L::splat(c.sm).select(static_pair, L::splat(st.sm)),
+        si: L::splat(c.si).select(static_pair, L::splat(st.si)),
+        floor: L::splat(c.floor).select(static_pair, L::splat(st.floor)),
+    };
+    // n·Δ(dp) is shared by both points: Q2.30 × Q12.20 → Q13.19.
+    let dpn = n.0.mul::<31>(pb[0].sub(pa[0])).add(n.1.mul::<31>(pb[1].sub(pa[1])));
+    let zero = L::splat(0);
+    let rows =
+        [row(&v, 0, dpn, &pa, &pb, &soft, params, bias), row(&v, 1, dpn, &pa, &pb, &soft, params, bias)];
+    let arms = [(v.pt(0, f::RAN), v.pt(0, f::RBN)), (v.pt(1, f::RAN), v.pt(1, f::RBN))];
+    let normal = [Ratios::normal(&v, 0), Ratios::normal(&v, 1)];
+    let pre = State {
+        a,
+        b,
+        ln: [v.pt(0, f::LN), v.pt(1, f::LN)],
+        vrel: [v.pt(0, f::VREL), v.pt(1, f::VREL)],
+        maxd: [v.pt(0, f::MAXD), v.pt(1, f::MAXD)],
+    };
+    // The block: both points rigid or both soft (a soft point beside a
+    // speculative one has no precomputed inverse and goes one at a time).
+    let both_spec = rows[0].speculative.and(rows[1].speculative);
+    let neither_spec = rows[0].speculative.or(rows[1].speculative).not();
+    let (soft_block, mut want) = match bias {
+        Bias::On => (neither_spec, flags.has(HAS_BLOCK).and(both_spec.or(neither_spec))),
+        Bias::Off => (M::none(), flags.has(HAS_BLOCK)),
+    };
+    want = want.and(active);
+    let mut st = pre;
+    let mut solved = M::none();
+    if want.any() {
+        let vn =
+            [speed(&pre.a, &pre.b, n, arms[0].0, arms[0].1), speed(&pre.a, &pre.b, n, arms[1].0, arms[1].1)];
+        let (x, ok) = block(&v, want, soft_block, vn, &rows, pre.ln);
+        solved = ok;
+        let new = [pre.ln[0].select(ok, x[0]), pre.ln[1].select(ok, x[1])];
+        let d = [st.set_normal(0, new[0], vn[0]), st.set_normal(1, new[1], vn[1])];
+        apply_both(&normal, &mut st.a, &mut st.b, d);
+        st = pre.select(solved, &st);
+    }
+    let rest = solved.not().and(active);
+    if rest.any() {
+        // One point at a time, in the sweep's direction, so that neither point
+        // is always first.
+        let mut sq = pre;
+        macro_rules! point {
+            ($k:expr) => {{
+                const K: usize = $k;
+                let live = if K == 1 { two } else { M::all() };
+                let vn = speed(&sq.a, &sq.b, n, arms[K].0, arms[K].1);
+                let r = &rows[K];
+                let raw = r.sm.mul::<FU>(vn.add(r.bias)).add(r.si.mul::<FU>(sq.ln[K])).neg();
+                let new = sq.ln[K].add(raw.clamp_abs(LAMBDA_MAX)).clamp(zero, L::splat(LAMBDA_MAX));
+                let new = sq.ln[K].select(live, new);
+                let d = sq.set_normal(K, new, vn);
+                normal[K].apply(&mut sq.a, &mut sq.b, d);
+            }};
+        }
+        if reverse {
+            point!(1);
+            point!(0);
+        } else {
+            point!(0);
+            point!(1);
+        }
+        st = st.select(rest, &sq);
+    }
+    // Friction, point by point, bounded by φ·λ̂_n.
+    let mut lt = [v.pt(0, f::LT), v.pt(1, f::LT)];
+    each_point!(K => {
+        let vt = speed(&st.a, &st.b, t, v.pt(K, f::RAT), v.pt(K, f::RBT));
+        let cap = v.pt(K, f::PHI).mul::<FPHI>(st.ln[K].min(v.pt(K, f::CPHI)));
+        let new = lt[K].sub(vt).clamp(cap.neg(), cap);
+        let d = new.sub(lt[K]);
+        lt[K] = new;
+        Ratios::tangent(&v, K).apply(&mut st.a, &mut st.b, d);
+    });
+    each_point!(K => {
+        let p = f::P[K];
+        v.st(p + f::LN, st.ln[K], active);
+        v.st(p + f::LT, lt[K], active);
+        v.st(p + f::VREL, st.vrel[K], active);
+        v.st(p + f::MAXD, st.maxd[K], active);
+    });
+    scatter(bodies, ia, &st.a, flags.has(A_DYNAMIC).and(active));
+    scatter(bodies, ib, &st.b, flags.has(B_DYNAMIC).and(active));
+}
+
+/// The bounce: passes of the rigid normal rows towards vn = −e·v_rel for the
+/// points that approached faster than the threshold and pushed. Iterated
+/// because one Gauss-Seidel pass over a two-point manifold leaves the first
+/// point bouncing faster than the second (which spins a box that hit a wall
+/// square-on); each further pass shrinks that error by the coupling squared.
+#[inline(always)]
+pub(crate) fn restitute<const W: usize>(
+    blk: &mut Block,
+    base: usize,
+    active: M<W>,
+    bodies: &mut [BodyLanes],
+    params: &LaneParams,
+) {
+    const RESTITUTION_ITERATIONS: u32 = 4;
+    let mut v = View::<W> { blk, base };
+    let flags = v.ld(f::FLAGS);
+    let e = v.ld(f::E);
+    let zero = L::splat(0);
+    let live = [M::all(), flags.has(TWO_POINTS)];
+    let mut bounce = [M::none(); 2];
+    each_point!(K => {
+        let fast = v.pt(K, f::VREL).lt(L::splat(-params.threshold).add(L::splat(1)));
+        let pushed = v.pt(K, f::MAXD).nonzero();
+        bounce[K] = fast.and(pushed).and(e.gt(zero)).and(live[K]).and(active);
+    });
+    if !bounce[0].or(bounce[1]).any() {
+        return;
+    }
+    let (ia, ib) = (v.ld(f::IA), v.ld(f::IB));
+    let (mut a, _) = gather(bodies, ia);
+    let (mut b, _) = gather(bodies, ib);
+    let n = (v.ld(f::NX), v.ld(f::NY));
+    let mut ln = [v.pt(0, f::LN), v.pt(1, f::LN)];
+    let mut maxd = [v.pt(0, f::MAXD), v.pt(1, f::MAXD)];
+    for _ in 0..RESTITUTION_ITERATIONS {
+        each_point!(K => {
+            let vn = speed(&a, &b, n, v.pt(K, f::RAN), v.pt(K, f::RBN));
+            let target = vn.add(e.mul::<FU>(v.pt(K, f::VREL)));
+            let new = ln[K].add(target.neg().clamp_abs(LAMBDA_MAX)).clamp(zero, L::splat(LAMBDA_MAX));
+            let new = ln[K].select(bounce[K], new);
+            let d = new.sub(ln[K]);
+            ln[K] = new;
+            maxd[K] = maxd[K].select(bounce[K], maxd[K].max(d));
+            Ratios::normal(&v, K).apply(&mut a, &mut b, d);
+        });
+    }
+    each_point!(K => {
+        v.st(f::P[K] + f::LN, ln[K], active);
+        v.st(f::P[K] + f::MAXD, maxd[K], active);
+    });
+    scatter(bodies, ia, &a, flags.has(A_DYNAMIC).and(active));
+    scatter(bodies, ib, &b, flags.has(B_DYNAMIC).and(active));
+}
+
+/// Runs `f(lane)` for each active lane.
+#[inline(always)]
+fn each(active: M<LANES>, mut f: impl FnMut(usize)) {
+    for l in 0..LANES {
+        if active.is(l) {
+            f(l);
+        }
+    }
+}
+
+/// The warm-start pass as a [`Kernel`].
+pub(crate) struct WarmStart {
+    /// Add the carried impulses to the step's totals (every sub-step after the first).
+    pub(crate) count_totals: bool,
+}
+
+impl Kernel for WarmStart {
+    #[inline(always)]
+    fn eight<const WIDE: bool>(&self, blk: &mut Block, active: M<LANES>, bodies: &mut [BodyLanes]) {
+        if WIDE {
+            warm_start::<LANES>(blk, 0, active, bodies, self.count_totals);
+        } else {
+            each(active, |l| warm_start::<1>(blk, l, M::all(), bodies, self.count_totals));
+        }
+    }
+    #[inline(always)]
+    fn one(&self, blk: &mut Block, lane: usize, bodies: &mut [BodyLanes]) {
+        warm_start::<1>(blk, lane, M::all(), bodies, self.count_totals);
+    }
+}
+
+/// A sweep as a [`Kernel`].
+pub(crate) struct SweepPass<'p> {
+    pub(crate) params: &'p LaneParams,
+    pub(crate) bias: Bias,
+    /// The sweep runs in reverse (two points solved one at a time go last first).
+    pub(crate) reverse: bool,
+}
+
+impl Kernel for SweepPass<'_> {
+    #[inline(always)]
+    fn eight<const WIDE: bool>(&self, blk: &mut Block, active: M<LANES>, bodies: &mut [BodyLanes]) {
+        let (p, b, r) = (self.params, self.bias, self.reverse);
+        if WIDE {
+            sweep::<LANES>(blk, 0, active, bodies, p, b, r);
+        } else {
+            each(active, |l| sweep::<1>(blk, l, M::all(), bodies, p, b, r));
+        }
+    }
+    #[inline(always)]
+    fn one(&self, blk: &mut Block, lane: usize, bodies: &mut [BodyLanes]) {
+        sweep::<1>(blk, lane, M::all(), bodies, self.params, self.bias, self.reverse);
+    }
+}
+
+/// The restitution pass as a [`Kernel`].
+pub(crate) struct Restitute<'p> {
+    pub(crate) params: &'p LaneParams,
+}
+
+impl Kernel for Restitute<'_> {
+    #[inline(always)]
+    fn eight<const WIDE: bool>(&self, blk: &mut Block, active: M<LANES>, bodies: &mut [BodyLanes]) {
+        if WIDE {
+            restitute::<LANES>(blk, 0, active, bodies, self.params);
+        } else {
+            each(active, |l| restitute::<1>(blk, l, M::all(), bodies, self.params));
+        }
+    }
+    #[inline(always)]
+    fn one(&self, blk: &mut Block, lane: usize, bodies: &mut [BodyLanes]) {
+        restitute::<1>(blk, lane, M::all(), bodies, self.params);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solver::contact::{field_mut, ContactConstraint};
+
+    /// xorshift64: fixed arrays, no allocation, the same on every target.
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0
+        }
+        /// Uniform in [lo, hi], or one of the edges and zero a quarter of the time.
+        fn range(&mut self, lo: i32, hi: i32) -> i32 {
+            let r = self.next();
+            match r % 16 {
+                0 => lo,
+                1 => hi,
+                2 => 0.clamp(lo, hi),
+                _ => (i64::from(lo) + ((r >> 8) % (i64::from(hi) - i64::from(lo) + 1) as u64) as i64) as i32,
+            }
+        }
+    }
+
+    const ONE30: i32 = 1 << 30;
+
+    /// A block of eight random lanes within the documented bounds, on bodies
+    /// 1–16 (each lane its own two, so no two lanes share a dynamic body) or
+    /// the static body 0.
+    fn random_block(rng: &mut Rng) -> (Block, [BodyLanes; 17]) {
+        let mut blk = [ContactConstraint::EMPTY; LANES];
+        for l in 0..LANES {
+            let mut put = |fi: usize, x: i32| field_mut(&mut blk, fi)[l] = x;
+            let a_static = rng.next().is_multiple_of(4);
+            put(f::IA, if a_static { 0 } else { 1 + 2 * l as i32 });
+            put(f::IB, 2 + 2 * l as i32);
+            let flags = (rng.next() as i32 & (TWO_POINTS | STATIC_PAIR | HAS_BLOCK))
+                | B_DYNAMIC
+                | if a_static { 0 } else { A_DYNAMIC };
+            put(f::FLAGS, flags);
+            let angle = (rng.next() % 6283) as f64 / 1000.0;
+            let (c, s) = (libm::cos(angle), libm::sin(angle));
+            put(f::NX, (c * f64::from(ONE30)) as i32);
+            put(f::NY, (s * f64::from(ONE30)) as i32);
+            put(f::E, rng.range(0, ONE30));
+            put(f::C12, rng.range(-(1 << 30), 1 << 30));
+            put(f::C21, rng.range(-(1 << 30), 1 << 30));
+            for k in 0..8 {
+                put(f::MR + k, rng.range(-(15 << 27), 15 << 27));
+            }
+            for &p in &f::P {
+                for x in [f::RAN, f::RBN, f::RAT, f::RBT] {
+                    put(p + x, rng.range(-(2 << 29), 2 << 29));
+                }
+                for x in [f::ANX, f::ANY, f::BNX, f::BNY, f::ATX, f::ATY, f::BTX, f::BTY] {
+                    put(p + x, rng.range(-ONE30, ONE30));
+                }
+                for x in [f::GAN, f::GBN, f::GAT, f::GBT] {
+                    put(p + x, rng.range(-(3 << 29), 3 << 29));
+                }
+                put(p + f::LN, rng.range(0, LAMBDA_MAX));
+                put(p + f::LT, rng.range(-LAMBDA_MAX, LAMBDA_MAX));
+                put(p + f::BASE, rng.range(-(512 << 19), 512 << 19));
+                put(p + f::PHI, rng.range(0, (255 << 23) - 1));
+                put(p + f::CPHI, rng.range(0, LAMBDA_MAX));
+                put(p + f::VREL, rng.range(-V_WALL, V_WALL));
+                put(p + f::MAXD, rng.range(-LAMBDA_MAX, LAMBDA_MAX));
+                put(p + f::TOT, rng.range(0, 15 * (LAMBDA_MAX >> 2)));
+            }
+        }
+        let mut bodies = [BodyLanes::EMPTY; 17];
+        for b in bodies.iter_mut().skip(1) {
+            for k in 0..3 {
+                b.0[k] = rng.range(-V_WALL, V_WALL);
+            }
+            for k in 3..6 {
+                b.0[k] = rng.range(-(100 << 20), 100 << 20);
+            }
+        }
+        bodies[0].0[3..6].copy_from_slice(&[0, 0, 0]);
+        (blk, bodies)
+    }
+
+    fn params(rng: &mut Rng) -> LaneParams {
+        let soft = |rng: &mut Rng| LaneSoft {
+            beta: rng.range(0, 1 << 20),
+            sm: rng.range(0, ONE30),
+            si: 0,
+            floor: rng.range(0, 4095 << 19),
+        };
+        let mut p = LaneParams {
+            inv_h: rng.range(1 << 10, 1 << 30),
+            spec_cap: rng.range(0, 4095 << 19),
+            push: rng.range(0, 100 << 16),
+            threshold: rng.range(0, 10 << 16),
+            soft: [soft(rng), soft(rng)],
+        };
+        for s in p.soft.iter_mut() {
+            s.si = ONE30 - s.sm;
+        }
+        p
+    }
+
+    /// Every kernel gives the same bytes on eight lanes at once (any mask) as
+    /// on each active lane alone, on random and extreme inputs.
+    #[test]
+    fn eight_lanes_at_once_equal_one_at_a_time() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        for round in 0..10_000 {
+            let (blk, bodies) = random_block(&mut rng);
+            let p = params(&mut rng);
+            let mut active = M::<LANES>::none();
+            for (j, a) in active.0.iter_mut().enumerate() {
+                *a = -i32::from(round % 3 == 0 || (rng.next() >> j) & 1 == 1);
+            }
+            let kernel = round % 5;
+            let (bias, reverse) = (if round % 2 == 0 { Bias::On } else { Bias::Off }, round % 4 < 2);
+            let (mut b8, mut bodies8) = (blk, bodies);
+            let (mut b1, mut bodies1) = (blk, bodies);
+            match kernel {
+                0 => {
+                    warm_start::<LANES>(&mut b8, 0, active, &mut bodies8, round % 3 == 1);
+                    each(active, |l| warm_start::<1>(&mut b1, l, M::all(), &mut bodies1, round % 3 == 1));
+                }
+                1 => {
+                    restitute::<LANES>(&mut b8, 0, active, &mut bodies8, &p);
+                    each(active, |l| restitute::<1>(&mut b1, l, M::all(), &mut bodies1, &p));
+                }
+                _ => {
+                    sweep::<LANES>(&mut b8, 0, active, &mut bodies8, &p, bias, reverse);
+                    each(active, |l| sweep::<1>(&mut b1, l, M::all(), &mut bodies1, &p, bias, reverse));
+                }
+            }
+            assert_eq!(b8, b1, "round {round}: kernel {kernel} constraint lanes");
+            assert_eq!(bodies8, bodies1, "round {round}: kernel {kernel} bodies");
+        }
+    }
+}

@@ -1,0 +1,389 @@
+//! The solver's own number formats: 32-bit integer lanes.
+//!
+//! [`Scalar`] (Q32.32) is the API's and the persistent state's number, but its
+//! product is a 64×64→128-bit multiply that no SIMD level has. Inside the step
+//! the contact sweeps work on `i32` values whose product is a 32×32→64 widening
+//! multiply and a shift: one instruction on every target, eight per AVX2
+//! instruction. Each quantity has its own format, chosen from the world's
+//! documented limits so that no lane can wrap (the design note
+//! `docs/design/solver-lanes.md` has the derivation):
+//!
+//! | quantity | format | resolution | bound in the solver | why |
+//! |---|---|---|---|---|
+//! | linear velocity v, rim speed ŵ = ω·r_b | Q16.16 | 1.5e-5 m/s | ±[`V_WALL`] | clamped after every update |
+//! | position and rim-rotation change over the step (dp, δ̂ = dθ·r_b) | Q12.20 | 9.5e-7 m | ±512 m, ±101 m | \|v\| ≤ 2,048 m/s, dt ≤ 0.25 s; \|dθ\| ≤ π/4 |
+//! | unit normal, ρ·d, γ̂, soft scales, restitution | Q2.30 | 9.3e-10 | ±1, ±1, ±[`GAMMA_MAX`], [0, 1], [0, 1] | unit vectors and mass ratios (below) |
+//! | contact arm in body radii r̂ = (r×d)/r_b | Q3.29 | 1.9e-9 | ±[`ARM_MAX`] | \|r\| ≤ r_b on the body; deep overlaps clamped |
+//! | separation | Q13.19 | 1.9e-6 m | ±2,362 m | shapes ≤ 128 m, the step's motion |
+//! | 1/h, bias rate | Q22.10 | 9.8e-4 1/s | ≤ 2²⁰ | dt ≥ 2⁻¹⁶ s ([`MIN_TIME_STEP`](crate::limits::MIN_TIME_STEP)), ≤ 16 sub-steps |
+//! | friction factor φ = μ·k_t/k_n | Q9.23 | 1.2e-7 | [0, [`PHI_MAX`]) | μ ≤ 100, clamped |
+//! | accumulated impulse in velocity units λ̂ = λ·k | Q16.16 | 1.5e-5 m/s | [0, [`LAMBDA_MAX`]] | clamped at every update |
+//! | block inverse M̂, coupling c_ij | Q5.27, Q3.29 | | < [`BLOCK_MAX`], ≤ 2 | the block is used only inside these |
+//!
+//! **Lanes never see a mass.** Every row keeps its impulse in velocity units,
+//! λ̂ = λ·k with k = 1/m_eff of the row, and turns it into velocity changes by
+//! ratios: ρ = m_eff/m ≤ 1 for the linear part and γ̂ = m_eff·(r×d)·r_b/I for
+//! the rim speed, ≤ r_b/(2ρ_g) ≤ √2 for every convex shape (ρ_g the radius of
+//! gyration). The 27-bit mass range (0.001–100,000 kg) stays in `Scalar`, in the
+//! once-per-step prepare and store. A velocity change below one ulp is lost: a
+//! 1 g body striking a 100 t one moves it by less than 1.5e-5 m/s, which rounds
+//! to nothing (f32 engines absorb it the same way).
+//!
+//! **Products** are `(a·b + 2^(k−1)) >> k` on the exact 64-bit product, rounding
+//! half up, the same on every target; adds and subtracts are plain `i32`, which
+//! the bounds above keep from wrapping (the smallest margin, the rim speed after
+//! a friction update, is 1.2×). Values enter from `Scalar` rounded the same way
+//! and saturated to their bound, and leave exactly (a shift).
+
+use crate::math::scalar::Scalar;
+
+/// Lanes per block: the constraint layout is the same for every instruction
+/// set (AVX2 takes a block at once, the portable path goes lane by lane).
+pub(crate) const LANES: usize = 8;
+
+/// Fractional bits of velocities, rim speeds and impulses (Q16.16).
+pub(crate) const FV: u32 = 16;
+/// Fractional bits of position and rim-rotation changes (Q12.20).
+pub(crate) const FP: u32 = 20;
+/// Fractional bits of unit vectors, ratios and scales (Q2.30).
+pub(crate) const FU: u32 = 30;
+/// Fractional bits of arms in body radii and block couplings (Q3.29).
+pub(crate) const FR: u32 = 29;
+/// Fractional bits of separations (Q13.19).
+pub(crate) const FS: u32 = 19;
+/// Fractional bits of rates, 1/s (Q22.10).
+pub(crate) const FQ: u32 = 10;
+/// Fractional bits of the friction factor (Q9.23).
+pub(crate) const FPHI: u32 = 23;
+/// Fractional bits of the block inverse's entries (Q5.27).
+pub(crate) const FM: u32 = 27;
+
+/// The velocity wall, m/s: every linear velocity component and rim speed in the
+/// solver is clamped to ±`V_WALL` after each update
+/// ([`MAX_LINEAR_SPEED_LIMIT`](crate::limits::MAX_LINEAR_SPEED_LIMIT)). The
+/// format holds 16 times more; the bounds of every sum spend that room.
+pub(crate) const V_WALL: i32 = 2048 << FV;
+/// The largest accumulated impulse of a row, in velocity units (m/s): Λ, the
+/// "crush limit". One contact transmits at most Λ·m_eff N·s per sub-step; a
+/// body resting on the ground at 240 Hz sub-steps could carry 800,000 times its
+/// weight, far outside what a stack holds anyway.
+pub(crate) const LAMBDA_MAX: i32 = 8192 << FV;
+/// The largest bias a speculative (still apart) point gets, m/s: a gap that
+/// could not close at 4,096 m/s stops an approach faster than that.
+pub(crate) const SPEC_BIAS_MAX: i64 = 4096;
+/// Contact arms in body radii are clamped to ±2 (a deep overlap puts the
+/// midway anchor outside the body).
+pub(crate) const ARM_MAX: i64 = 2;
+/// The angular ratio γ̂ is clamped to ±1.5 (≤ √2 for every convex shape).
+pub(crate) const GAMMA_MAX: Scalar = Scalar::lit("1.5");
+/// The friction factor φ = μ·k_t/k_n is clamped below 256.
+pub(crate) const PHI_MAX: i64 = 256;
+/// A two-point block is solved together only when every entry of its
+/// normalised inverse is below 16 (a well-conditioned pair).
+pub(crate) const BLOCK_MAX: Scalar = Scalar::from_int(16);
+
+/// `(a·b + 2^(K−1)) >> K` on the exact 64-bit product, narrowed to `i32`.
+/// The callers' bounds make the narrowing lossless.
+#[inline(always)]
+pub(crate) fn mul<const K: u32>(a: i32, b: i32) -> i32 {
+    ((i64::from(a) * i64::from(b) + (1i64 << (K - 1))) >> K) as i32
+}
+
+/// A `Scalar` in a lane of `f` fractional bits, rounded half up and saturated
+/// to ±`bound` (in the lane's units, whole numbers; at most the format's edge).
+#[inline]
+pub(crate) fn from_scalar(x: Scalar, f: u32, bound: i64) -> i32 {
+    let shift = 32 - f;
+    let bits = x.to_bits();
+    let rounded = (bits >> shift) + ((bits >> (shift - 1)) & 1);
+    let hi = (bound << f).min(i64::from(i32::MAX));
+    rounded.clamp(-hi, hi) as i32
+}
+
+/// A lane of `f` fractional bits as a `Scalar` (exact).
+#[inline]
+pub(crate) fn to_scalar(x: i32, f: u32) -> Scalar {
+    Scalar::from_bits(i64::from(x) << (32 - f))
+}
+
+/// A 64-bit sum of a Q16.16 value as a `Scalar` (saturating).
+#[inline]
+pub(crate) fn wide_to_scalar(x: i64) -> Scalar {
+    Scalar::from_bits(x.saturating_mul(1 << (32 - FV)))
+}
+
+/// A velocity (m/s) as a lane, saturated at the wall.
+#[inline]
+pub(crate) fn velocity(x: Scalar) -> i32 {
+    from_scalar(x, FV, 2048)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn products_round_half_up_and_reach_the_format_edges() {
+        assert_eq!(mul::<16>(3 << 16, 5 << 16), 15 << 16);
+        // ½ ulp rounds up, −½ ulp rounds up (toward +∞).
+        assert_eq!(mul::<1>(1, 1), 1);
+        assert_eq!(mul::<1>(-1, 1), 0);
+        // The largest bounded product: a wall speed times a unit normal.
+        assert_eq!(mul::<FU>(V_WALL, 1 << FU), V_WALL);
+        assert_eq!(mul::<FU>(-V_WALL, 1 << FU), -V_WALL);
+        // Λ by the largest γ̂ fits the rim-speed format with room.
+        let g = from_scalar(GAMMA_MAX, FU, 2);
+        let x = i64::from(V_WALL) + 2 * i64::from(mul::<FU>(g, LAMBDA_MAX));
+        assert!(x < i64::from(i32::MAX));
+    }
+
+    #[test]
+    fn conversions_saturate_at_the_bound_and_return_exactly() {
+        assert_eq!(velocity(Scalar::from_int(5000)), V_WALL);
+        assert_eq!(velocity(Scalar::from_int(-5000)), -V_WALL);
+        assert_eq!(velocity(Scalar::MAX), V_WALL);
+        assert_eq!(velocity(Scalar::MIN), -V_WALL);
+        let v = Scalar::lit("-3.25");
+        assert_eq!(to_scalar(velocity(v), FV), v);
+        // Rounding half up of a value between two lane steps.
+        let half = Scalar::from_bits(1 << 15);
+        assert_eq!(velocity(half), 1);
+        assert_eq!(velocity(-half), 0);
+        assert_eq!(from_scalar(Scalar::ONE, FU, 1), 1 << FU);
+        assert_eq!(from_scalar(-Scalar::ONE, FU, 1), -(1 << FU));
+    }
+}
+
+/// `W` lanes of `i32`: the kernels are written once over these and compiled
+/// for each width and instruction set. Every operation is lane-wise and
+/// exact, so no width or instruction set can change a result.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct L<const W: usize>(pub(crate) [i32; W]);
+
+/// A lane mask: −1 (all bits set) where true, 0 where false, so that every
+/// mask operation is a vector bit operation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct M<const W: usize>(pub(crate) [i32; W]);
+
+/// A lane-wise binary operation, written as a plain loop (no closure), so
+/// that it inlines and vectorises wherever the kernel is compiled.
+macro_rules! lanewise {
+    ($(#[$m:meta])* $name:ident, |$a:ident, $b:ident| $e:expr) => {
+        $(#[$m])*
+        #[inline(always)]
+        pub(crate) fn $name(self, o: Self) -> Self {
+            let mut r = self.0;
+            for (r, &$b) in r.iter_mut().zip(&o.0) {
+                let $a = *r;
+                *r = $e;
+            }
+            Self(r)
+        }
+    };
+}
+
+impl<const W: usize> L<W> {
+    #[inline(always)]
+    pub(crate) fn splat(x: i32) -> Self {
+        Self([x; W])
+    }
+    lanewise!(add, |a, b| a.wrapping_add(b));
+    lanewise!(sub, |a, b| a.wrapping_sub(b));
+    lanewise!(min, |a, b| if a < b { a } else { b });
+    lanewise!(max, |a, b| if a > b { a } else { b });
+    #[inline(always)]
+    pub(crate) fn neg(self) -> Self {
+        let mut r = self.0;
+        for x in r.iter_mut() {
+            *x = x.wrapping_neg();
+        }
+        Self(r)
+    }
+    /// Clamped to ±`b` (b ≥ 0).
+    #[inline(always)]
+    pub(crate) fn clamp_abs(self, b: i32) -> Self {
+        self.max(Self::splat(-b)).min(Self::splat(b))
+    }
+    #[inline(always)]
+    pub(crate) fn clamp(self, lo: Self, hi: Self) -> Self {
+        self.max(lo).min(hi)
+    }
+    /// The lane-wise product with shift `K` ([`mul`]).
+    #[inline(always)]
+    pub(crate) fn mul<const K: u32>(self, o: Self) -> Self {
+        let mut r = self.0;
+        for (r, &b) in r.iter_mut().zip(&o.0) {
+            *r = mul::<K>(*r, b);
+        }
+        Self(r)
+    }
+    #[inline(always)]
+    pub(crate) fn gt(self, o: Self) -> M<W> {
+        let mut r = [0; W];
+        for ((r, &a), &b) in r.iter_mut().zip(&self.0).zip(&o.0) {
+            *r = -i32::from(a > b);
+        }
+        M(r)
+    }
+    #[inline(always)]
+    pub(crate) fn lt(self, o: Self) -> M<W> {
+        o.gt(self)
+    }
+    /// Lanes of `a` where `m`, else of `self`.
+    #[inline(always)]
+    pub(crate) fn select(self, m: M<W>, a: Self) -> Self {
+        let mut r = self.0;
+        for ((r, &a), &m) in r.iter_mut().zip(&a.0).zip(&m.0) {
+            *r = (a & m) | (*r & !m);
+        }
+        Self(r)
+    }
+    /// The lanes whose bits `bit` are set.
+    #[inline(always)]
+    pub(crate) fn has(self, bit: i32) -> M<W> {
+        let mut r = [0; W];
+        for (r, &a) in r.iter_mut().zip(&self.0) {
+            *r = -i32::from(a & bit != 0);
+        }
+        M(r)
+    }
+    /// Arithmetic shift right by two (Q16.16 → Q18.14 after the rounding add).
+    #[inline(always)]
+    pub(crate) fn shr2(self) -> Self {
+        let mut r = self.0;
+        for x in r.iter_mut() {
+            *x >>= 2;
+        }
+        Self(r)
+    }
+    /// Lanes not equal to zero.
+    #[inline(always)]
+    pub(crate) fn nonzero(self) -> M<W> {
+        self.has(-1)
+    }
+}
+
+impl<const W: usize> M<W> {
+    /// Every lane.
+    #[inline(always)]
+    pub(crate) fn all() -> Self {
+        Self([-1; W])
+    }
+    /// No lane.
+    #[inline(always)]
+    pub(crate) fn none() -> Self {
+        Self([0; W])
+    }
+    /// Whether lane `i` is set.
+    #[inline(always)]
+    pub(crate) fn is(&self, i: usize) -> bool {
+        self.0.get(i).is_some_and(|&m| m != 0)
+    }
+    #[inline(always)]
+    pub(crate) fn and(self, o: Self) -> Self {
+        let mut r = self.0;
+        for (r, &b) in r.iter_mut().zip(&o.0) {
+            *r &= b;
+        }
+        Self(r)
+    }
+    #[inline(always)]
+    pub(crate) fn or(self, o: Self) -> Self {
+        let mut r = self.0;
+        for (r, &b) in r.iter_mut().zip(&o.0) {
+            *r |= b;
+        }
+        Self(r)
+    }
+    #[inline(always)]
+    pub(crate) fn not(self) -> Self {
+        let mut r = self.0;
+        for r in r.iter_mut() {
+            *r = !*r;
+        }
+        Self(r)
+    }
+    /// True if any lane is set: used only to skip work whose results every
+    /// lane would discard, never to choose a result.
+    #[inline(always)]
+    pub(crate) fn any(self) -> bool {
+        self.0.iter().fold(0, |a, &m| a | m) != 0
+    }
+}
+
+/// `W` lanes of `i64`: the 2×2 block's right-hand side and products.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct L64<const W: usize>(pub(crate) [i64; W]);
+
+impl<const W: usize> L64<W> {
+    /// Sign-extended from `i32` lanes.
+    #[inline(always)]
+    pub(crate) fn from(x: L<W>) -> Self {
+        let mut r = [0i64; W];
+        for (r, &x) in r.iter_mut().zip(&x.0) {
+            *r = i64::from(x);
+        }
+        Self(r)
+    }
+    /// `(a·b + 2^(K−1)) >> K` on the exact 64-bit products of `i32` lanes.
+    #[inline(always)]
+    pub(crate) fn mul_shift<const K: u32>(a: L<W>, b: L<W>) -> Self {
+        let mut r = [0i64; W];
+        for ((r, &a), &b) in r.iter_mut().zip(&a.0).zip(&b.0) {
+            *r = (i64::from(a) * i64::from(b) + (1i64 << (K - 1))) >> K;
+        }
+        Self(r)
+    }
+    #[inline(always)]
+    pub(crate) fn add(self, o: Self) -> Self {
+        let mut r = self.0;
+        for (r, &b) in r.iter_mut().zip(&o.0) {
+            *r = r.wrapping_add(b);
+        }
+        Self(r)
+    }
+    #[inline(always)]
+    pub(crate) fn sub(self, o: Self) -> Self {
+        let mut r = self.0;
+        for (r, &b) in r.iter_mut().zip(&o.0) {
+            *r = r.wrapping_sub(b);
+        }
+        Self(r)
+    }
+    #[inline(always)]
+    pub(crate) fn neg(self) -> Self {
+        let mut r = self.0;
+        for r in r.iter_mut() {
+            *r = r.wrapping_neg();
+        }
+        Self(r)
+    }
+    /// Lanes ≥ 0.
+    #[inline(always)]
+    pub(crate) fn nonneg(self) -> M<W> {
+        let mut r = [0; W];
+        for (r, &a) in r.iter_mut().zip(&self.0) {
+            *r = -i32::from(a >= 0);
+        }
+        M(r)
+    }
+    /// Halved, rounded half up, as `i32` (a Q16.16 value as Q17.15; the
+    /// callers' bounds keep it within 2³¹).
+    #[inline(always)]
+    pub(crate) fn narrow_shr1(self) -> L<W> {
+        let mut r = [0i32; W];
+        for (r, &a) in r.iter_mut().zip(&self.0) {
+            *r = ((a + 1) >> 1) as i32;
+        }
+        L(r)
+    }
+    /// Clamped to [0, `hi`] and narrowed.
+    #[inline(always)]
+    pub(crate) fn clamp_narrow(self, hi: i32) -> L<W> {
+        let mut r = [0i32; W];
+        for (r, &a) in r.iter_mut().zip(&self.0) {
+            *r = a.clamp(0, i64::from(hi)) as i32;
+        }
+        L(r)
+    }
+}
