@@ -19,48 +19,14 @@
 //! builds; the light ones (friction ramp, restitution, overlap recovery,
 //! frictionless collisions) run in both.
 
-use arphysics::{
-    BodyDef, BodyHandle, Capacities, GravityForceGenerator, PathHandle, PolygonPath, Rect, Scalar, Shape,
-    Vector2, World, WorldDef,
-};
+use arphysics::{BodyDef, BodyHandle, PathHandle, PolygonPath, Shape, World};
 
 // ---- units and scene helpers -------------------------------------------------
-
-/// The time step of every scene (s).
-const DT: f64 = 1.0 / 60.0;
-/// Gravity (m/s², downwards).
-const G: f64 = 10.0;
-
-fn s(x: f64) -> Scalar {
-    Scalar::from_num(x)
-}
-
-fn v(x: f64, y: f64) -> Vector2 {
-    Vector2::new(s(x), s(y))
-}
-
-/// Steps for `seconds` of simulated time.
-fn steps(seconds: f64) -> usize {
-    (seconds / DT).round() as usize
-}
 
 /// A world of ±1000 m with room for `bodies` bodies, 8 paths and 4 contacts per
 /// body, with gravity (0, −10) when `gravity` is true.
 fn world(bodies: usize, gravity: bool) -> World<'static> {
     world_with_contacts(bodies, bodies * 4, gravity)
-}
-
-fn world_with_contacts(bodies: usize, contacts: usize, gravity: bool) -> World<'static> {
-    let bounds = Rect::from_corners(v(-1000.0, -1000.0), v(1000.0, 1000.0));
-    let mut w = World::with_capacities(
-        WorldDef::with_bounds(bounds),
-        Capacities { bodies, paths: 8, contacts, joints: 0, post_step_callbacks: 64 },
-    )
-    .expect("world");
-    if gravity {
-        w.add_force_generator(GravityForceGenerator::new(v(0.0, -G))).expect("gravity");
-    }
-    w
 }
 
 fn rect_path(w: &mut World<'static>, width: f64, height: f64) -> PathHandle {
@@ -167,124 +133,11 @@ fn max_pair_penetration(w: &World<'static>, bodies: &[BodyHandle]) -> f64 {
     worst
 }
 
-// ---- metrics -------------------------------------------------------------------
+// ---- metrics: tests/quality_common ----------------------------------------------
 
-/// What a metric must satisfy.
-#[derive(Clone, Copy, Debug)]
-enum Limit {
-    /// value ≤ bound.
-    AtMost(f64),
-    /// value < bound.
-    Below(f64),
-    /// |value − target| ≤ tolerance.
-    Near { target: f64, tolerance: f64 },
-    /// Printed for information, not asserted.
-    Info,
-}
+mod quality_common;
 
-impl Limit {
-    fn holds(self, value: f64) -> bool {
-        match self {
-            Self::AtMost(b) => value <= b,
-            Self::Below(b) => value < b,
-            Self::Near { target, tolerance } => (value - target).abs() <= tolerance,
-            Self::Info => true,
-        }
-    }
-
-    fn describe(self) -> String {
-        match self {
-            Self::AtMost(b) => format!("≤ {}", num(b)),
-            Self::Below(b) => format!("< {}", num(b)),
-            Self::Near { target, tolerance } => format!("{} ± {}", num(target), num(tolerance)),
-            Self::Info => "info".to_string(),
-        }
-    }
-}
-
-/// One measured number of one scene.
-#[derive(Clone, Debug)]
-struct Metric {
-    scene: &'static str,
-    what: String,
-    value: f64,
-    unit: &'static str,
-    limit: Limit,
-    box2d: Option<&'static str>,
-}
-
-impl Metric {
-    fn new(
-        scene: &'static str,
-        what: impl Into<String>,
-        value: f64,
-        unit: &'static str,
-        limit: Limit,
-    ) -> Self {
-        Self { scene, what: what.into(), value, unit, limit, box2d: None }
-    }
-
-    fn box2d(mut self, figure: &'static str) -> Self {
-        self.box2d = Some(figure);
-        self
-    }
-
-    fn passes(&self) -> bool {
-        self.limit.holds(self.value)
-    }
-
-    fn value_text(&self) -> String {
-        if self.unit.is_empty() {
-            num(self.value)
-        } else {
-            format!("{} {}", num(self.value), self.unit)
-        }
-    }
-
-    /// `quality <scene>: <what> <value> <unit> (<limit>) [Box2D <figure>]`.
-    fn line(&self) -> String {
-        let verdict = if self.passes() { "" } else { "  <-- FAILS" };
-        format!(
-            "quality {}: {} {} ({}) [Box2D {}]{verdict}",
-            self.scene,
-            self.what,
-            self.value_text(),
-            self.limit.describe(),
-            self.box2d.unwrap_or("—"),
-        )
-    }
-}
-
-/// A number printed compactly: 4 decimals, or scientific when tiny.
-fn num(x: f64) -> String {
-    if x != 0.0 && x.abs() < 1e-3 {
-        let t = format!("{x:.3e}");
-        match t.split_once('e') {
-            Some((mantissa, exp)) => {
-                format!("{}e{exp}", mantissa.trim_end_matches('0').trim_end_matches('.'))
-            }
-            None => t,
-        }
-    } else {
-        let t = format!("{x:.4}");
-        let t = t.trim_end_matches('0').trim_end_matches('.');
-        if t == "-0" {
-            "0".to_string()
-        } else {
-            t.to_string()
-        }
-    }
-}
-
-/// Prints every metric, then asserts they all hold (so one failure still shows
-/// all the numbers).
-fn check(metrics: &[Metric]) {
-    for m in metrics {
-        println!("{}", m.line());
-    }
-    let failed: Vec<String> = metrics.iter().filter(|m| !m.passes()).map(Metric::line).collect();
-    assert!(failed.is_empty(), "quality thresholds missed:\n{}", failed.join("\n"));
-}
+use quality_common::{check, s, steps, v, world_with_contacts, Limit, Metric, DT, G};
 
 // ---- 1. pyramid ----------------------------------------------------------------
 

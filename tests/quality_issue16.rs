@@ -22,45 +22,9 @@
 //! `cargo test --release --test quality_issue16 -- --ignored --nocapture mass_ratio_scan`
 //! for the largest mass ratio the two-box stack holds.
 
-use arphysics::{
-    BodyDef, BodyHandle, Capacities, GravityForceGenerator, PolygonPath, Rect, Scalar, Vector2, World,
-    WorldDef,
-};
+use arphysics::{BodyDef, BodyHandle, PolygonPath, World};
 
 // ---- units and scene helpers -------------------------------------------------
-
-/// The time step of every scene (s).
-const DT: f64 = 1.0 / 60.0;
-/// Gravity (m/s², downwards).
-const G: f64 = 10.0;
-
-fn s(x: f64) -> Scalar {
-    Scalar::from_num(x)
-}
-
-fn v(x: f64, y: f64) -> Vector2 {
-    Vector2::new(s(x), s(y))
-}
-
-/// Steps for `seconds` of simulated time.
-fn steps(seconds: f64) -> usize {
-    (seconds / DT).round() as usize
-}
-
-/// A world of ±1000 m with room for `bodies` bodies, 8 paths and `contacts`
-/// candidate pairs and arbiters, with gravity (0, −10) when `gravity` is true.
-fn world(bodies: usize, contacts: usize, gravity: bool) -> World<'static> {
-    let bounds = Rect::from_corners(v(-1000.0, -1000.0), v(1000.0, 1000.0));
-    let mut w = World::with_capacities(
-        WorldDef::with_bounds(bounds),
-        Capacities { bodies, paths: 8, contacts, joints: 0, post_step_callbacks: 64 },
-    )
-    .expect("world");
-    if gravity {
-        w.add_force_generator(GravityForceGenerator::new(v(0.0, -G))).expect("gravity");
-    }
-    w
-}
 
 /// A static `width` × 2 m ground box whose top is y = 0.
 fn ground(w: &mut World<'static>, width: f64) -> BodyHandle {
@@ -108,103 +72,9 @@ fn speed(w: &World<'static>, h: BodyHandle) -> f64 {
 
 // ---- metrics (the quality suite's format) ------------------------------------
 
-/// What a metric must satisfy.
-#[derive(Clone, Copy, Debug)]
-enum Limit {
-    /// value ≥ bound.
-    AtLeast(f64),
-    /// value ≤ bound.
-    AtMost(f64),
-    /// value < bound.
-    Below(f64),
-    /// Printed for information, not asserted.
-    Info,
-}
+mod quality_common;
 
-impl Limit {
-    fn holds(self, value: f64) -> bool {
-        match self {
-            Self::AtLeast(b) => value >= b,
-            Self::AtMost(b) => value <= b,
-            Self::Below(b) => value < b,
-            Self::Info => true,
-        }
-    }
-
-    fn describe(self) -> String {
-        match self {
-            Self::AtLeast(b) => format!("≥ {}", num(b)),
-            Self::AtMost(b) => format!("≤ {}", num(b)),
-            Self::Below(b) => format!("< {}", num(b)),
-            Self::Info => "info".to_string(),
-        }
-    }
-}
-
-/// One measured number of one scene.
-#[derive(Clone, Debug)]
-struct Metric {
-    scene: &'static str,
-    what: String,
-    value: f64,
-    unit: &'static str,
-    limit: Limit,
-}
-
-impl Metric {
-    fn new(
-        scene: &'static str,
-        what: impl Into<String>,
-        value: f64,
-        unit: &'static str,
-        limit: Limit,
-    ) -> Self {
-        Self { scene, what: what.into(), value, unit, limit }
-    }
-
-    fn passes(&self) -> bool {
-        self.limit.holds(self.value)
-    }
-
-    /// `quality <scene>: <what> <value> <unit> (<limit>) [Box2D —]`.
-    fn line(&self) -> String {
-        let verdict = if self.passes() { "" } else { "  <-- FAILS" };
-        // A NaN value marks a metric whose text says it all.
-        let what = if self.value.is_nan() {
-            self.what.clone()
-        } else if self.unit.is_empty() {
-            format!("{} {}", self.what, num(self.value))
-        } else {
-            format!("{} {} {}", self.what, num(self.value), self.unit)
-        };
-        format!("quality {}: {what} ({}) [Box2D —]{verdict}", self.scene, self.limit.describe())
-    }
-}
-
-/// A number printed compactly: 4 decimals, or scientific when tiny.
-fn num(x: f64) -> String {
-    if x != 0.0 && x.abs() < 1e-3 {
-        format!("{x:.3e}")
-    } else {
-        let t = format!("{x:.4}");
-        let t = t.trim_end_matches('0').trim_end_matches('.');
-        if t == "-0" {
-            "0".to_string()
-        } else {
-            t.to_string()
-        }
-    }
-}
-
-/// Prints every metric, then asserts they all hold (so one failure still shows
-/// all the numbers).
-fn check(metrics: &[Metric]) {
-    for m in metrics {
-        println!("{}", m.line());
-    }
-    let failed: Vec<String> = metrics.iter().filter(|m| !m.passes()).map(Metric::line).collect();
-    assert!(failed.is_empty(), "quality thresholds missed:\n{}", failed.join("\n"));
-}
+use quality_common::{check, num, s, steps, v, world_with_contacts, Limit, Metric, DT};
 
 // ---- 1. a row of five balls struck by a sixth ----------------------------------
 
@@ -220,7 +90,7 @@ const STRIKER_SPEED: f64 = 4.0;
 /// ≥ 0.8 and < 0.1.
 fn cradle() -> Vec<Metric> {
     const SCENE: &str = "cradle_5+1";
-    let mut w = world(6, 24, false);
+    let mut w = world_with_contacts(6, 24, false);
     let ball = || BodyDef::circle(s(0.5)).friction(s(0.0)).restitution(s(1.0));
     let striker = add(&mut w, ball().linear_velocity(v(STRIKER_SPEED, 0.0)), -1.5, 0.0);
     let row: Vec<_> = (0..5).map(|i| add(&mut w, ball(), f64::from(i), 0.0)).collect();
@@ -299,7 +169,7 @@ fn heap_at_one_point() -> Vec<Metric> {
     const R: f64 = 0.5;
     // Every pair overlaps at first: 4,950 pairs + 100 with the floor, and room
     // for the walls.
-    let mut w = world(HEAP + 4, HEAP * HEAP / 2 + 4 * HEAP, true);
+    let mut w = world_with_contacts(HEAP + 4, HEAP * HEAP / 2 + 4 * HEAP, true);
     let push_speed = w.def().contact_push_speed.to_f64();
     closed_box(&mut w, 40.0, 20.0);
     let circles: Vec<_> = (0..HEAP).map(|_| add(&mut w, BodyDef::circle(s(R)), 0.0, R)).collect();
@@ -350,7 +220,7 @@ const MAX_SINK: f64 = 0.05;
 /// `ratio` on it, both exactly touching, friction 0.6. Steps 10 s and returns
 /// (how far the top box's centre sank by 10 s, the most it sank at any step) (m).
 fn two_box_sink(ratio: f64) -> (f64, f64) {
-    let mut w = world(3, 12, true);
+    let mut w = world_with_contacts(3, 12, true);
     ground(&mut w, 100.0);
     let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("path");
     add(&mut w, BodyDef::polygon(unit), 0.0, 0.5);
