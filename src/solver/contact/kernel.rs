@@ -702,10 +702,10 @@ mod tests {
                 | B_DYNAMIC
                 | if a_static { 0 } else { A_DYNAMIC };
             put(f::FLAGS, flags);
-            let angle = (rng.next() % 6283) as f64 / 1000.0;
-            let (c, s) = (libm::cos(angle), libm::sin(angle));
-            put(f::NX, (c * f64::from(ONE30)) as i32);
-            put(f::NY, (s * f64::from(ONE30)) as i32);
+            // A unit normal from the engine's own trig (no float in src/).
+            let n = crate::math::Rot::from_angle(Scalar::from_bits((rng.next() % (27 << 30)) as i64));
+            put(f::NX, lanes::from_scalar(n.c, FU, 1));
+            put(f::NY, lanes::from_scalar(n.s, FU, 1));
             put(f::E, rng.range(0, ONE30));
             put(f::C12, rng.range(-(1 << 30), 1 << 30));
             put(f::C21, rng.range(-(1 << 30), 1 << 30));
