@@ -83,6 +83,7 @@ impl Targets {
     }
 
     /// True when the body is targeted.
+    #[inline]
     #[must_use]
     pub fn contains(&self, handle: BodyHandle, body: &Body) -> bool {
         match self {
@@ -201,13 +202,26 @@ impl<'a> Generator<'a> {
         }
     }
 
-    /// Runs the generator over every candidate body for one step.
+    /// Runs the generator over every candidate body for one step. The
+    /// built-ins are called directly (their `applies_to` and `apply` inlined
+    /// into the loop), a game's generator through its trait object.
     pub(crate) fn run(&mut self, bodies: &mut Arena<'_, Body>, dt: Scalar) {
-        let g = self.as_dyn_mut();
-        for (h, b) in bodies.iter_mut() {
-            if b.is_dynamic() && !b.out_of_bounds && g.applies_to(h, b) {
-                g.apply(h, b, dt);
-            }
+        match self {
+            Self::Linear(g) => run_over(g, bodies, dt),
+            Self::Gravity(g) => run_over(g, bodies, dt),
+            Self::GravityToPoint(g) => run_over(g, bodies, dt),
+            Self::Custom(g) => run_over(&mut **g, bodies, dt),
+        }
+    }
+}
+
+/// Calls `g` on every dynamic body inside the bounds that it accepts, in slot
+/// order.
+#[inline]
+fn run_over<G: ForceGenerator + ?Sized>(g: &mut G, bodies: &mut Arena<'_, Body>, dt: Scalar) {
+    for (h, b) in bodies.iter_mut() {
+        if b.is_dynamic() && !b.out_of_bounds && g.applies_to(h, b) {
+            g.apply(h, b, dt);
         }
     }
 }
