@@ -311,6 +311,7 @@ impl Body {
 
     /// Sets the linear velocity (m/s). Ignored for static and frozen bodies; the
     /// step clamps it to the world's speed limit.
+    #[inline]
     pub fn set_linear_velocity(&mut self, v: Vector2) {
         if self.moved_by_step() {
             self.linear_velocity = v;
@@ -318,6 +319,7 @@ impl Body {
     }
 
     /// Sets the angular velocity (rad/s). Ignored for static and frozen bodies.
+    #[inline]
     pub fn set_angular_velocity(&mut self, w: Scalar) {
         if self.moved_by_step() {
             self.angular_velocity = w;
@@ -325,6 +327,7 @@ impl Body {
     }
 
     /// Applies an impulse (N·s) at the centre of mass: Δv = J / m. Dynamic bodies only.
+    #[inline]
     pub fn apply_linear_impulse(&mut self, impulse: Vector2) {
         if self.is_dynamic() && !self.out_of_bounds {
             self.linear_velocity += impulse * self.mass.inv_mass;
@@ -332,6 +335,7 @@ impl Body {
     }
 
     /// Applies an angular impulse (N·m·s): Δω = L / I. Dynamic bodies only.
+    #[inline]
     pub fn apply_angular_impulse(&mut self, impulse: Scalar) {
         if self.is_dynamic() && !self.out_of_bounds {
             self.angular_velocity += impulse * self.mass.inv_inertia;
@@ -339,18 +343,21 @@ impl Body {
     }
 
     /// Applies an impulse (N·s) at the world point `p`, changing both velocities.
+    #[inline]
     pub fn apply_impulse_at(&mut self, impulse: Vector2, p: Vector2) {
         self.apply_linear_impulse(impulse);
         self.apply_angular_impulse((p - self.position).cross(impulse));
     }
 
     /// Applies a force (N) at the centre of mass for `dt` seconds: an impulse F·dt.
+    #[inline]
     pub fn apply_force(&mut self, force: Vector2, dt: Scalar) {
         self.apply_linear_impulse(force * dt);
     }
 
     /// Changes the linear velocity by `dv` (m/s) whatever the mass: how gravity
     /// acts. Dynamic bodies only.
+    #[inline]
     pub fn add_linear_velocity(&mut self, dv: Vector2) {
         if self.is_dynamic() && !self.out_of_bounds {
             self.linear_velocity += dv;
@@ -383,7 +390,9 @@ pub(crate) fn compute_aabb(b: &Body, paths: &Arena<'_, PolygonPath>) -> Rect {
 /// non-decreasing in `c·x` and non-increasing in `s·y`, so over the four
 /// corners it is least at the least `c·x` and the greatest `s·y` (and the
 /// other way round for the greatest); a rotated y, `s·x + c·y`, is
-/// non-decreasing in both.
+/// non-decreasing in both. Any other polygon reuses the products of a
+/// coordinate equal to the previous vertex's (a regular hexagon's sides share
+/// x, a triangle's base y).
 pub(crate) fn polygon_aabb(vertices: &[Vector2], xf: Transform) -> Rect {
     let (c, s) = (xf.q.c, xf.q.s);
     let (lo, hi) = match vertices {
@@ -395,11 +404,22 @@ pub(crate) fn polygon_aabb(vertices: &[Vector2], xf: Transform) -> Rect {
             (lo, hi)
         }
         [first, rest @ ..] => {
-            let first = xf.q.rotate(*first);
-            rest.iter().fold((first, first), |(lo, hi), v| {
-                let w = xf.q.rotate(*v);
-                (lo.min(w), hi.max(w))
-            })
+            // Each vertex rotated as `Rot::rotate` does, `(c·x − s·y, s·x + c·y)`,
+            // reusing the products of a coordinate equal to the previous
+            // vertex's (the same operands give the same bits).
+            let k = [c * first.x, s * first.x, s * first.y, c * first.y];
+            let w = Vector2::new(k[0] - k[2], k[1] + k[3]);
+            let (mut lo, mut hi) = (w, w);
+            let mut prev = (*first, k);
+            for v in rest {
+                let (u, k) = prev;
+                let [cx, sx] = if u.x == v.x { [k[0], k[1]] } else { [c * v.x, s * v.x] };
+                let [sy, cy] = if u.y == v.y { [k[2], k[3]] } else { [s * v.y, c * v.y] };
+                let w = Vector2::new(cx - sy, sx + cy);
+                (lo, hi) = (lo.min(w), hi.max(w));
+                prev = (*v, [cx, sx, sy, cy]);
+            }
+            (lo, hi)
         }
         [] => (Vector2::ZERO, Vector2::ZERO),
     };
@@ -456,8 +476,10 @@ mod tests {
             let rect_b = [v(x0, y0), v(x0, y1), v(x1, y1), v(x1, y0)];
             let other = [v(x0, y0), v(x1, y0), v(x1, y1), v(scalar(40), y1)];
             let tri = [v(x0, y0), v(x1, y1), v(scalar(40), scalar(40))];
+            let z = Scalar::ZERO;
+            let hex = [v(z, y0), v(-x0, y1), v(-x0, -y1), v(z, -y0), v(x0, -y1), v(x0, y1)];
             let xf = Transform::new(p, q);
-            for poly in [&rect_a[..], &rect_b[..], &other[..], &tri[..], &rect_a[..1], &[]] {
+            for poly in [&rect_a[..], &rect_b[..], &other[..], &tri[..], &hex[..], &rect_a[..1], &[]] {
                 assert_eq!(polygon_aabb(poly, xf), aabb_by_definition(poly, xf), "{poly:?} {xf:?}");
             }
         }
