@@ -304,6 +304,7 @@ pub(super) fn write_def(s: &mut impl Sink, d: &WorldDef) {
     s.u32(d.arbiter_persistence);
 }
 
+#[inline]
 fn write_props(s: &mut impl Sink, p: &Props) {
     match p.shape {
         Shape::Circle { radius } => {
