@@ -141,18 +141,17 @@ type Pose<const W: usize> = [L<W>; 3];
 /// Reads the velocity and motion of the bodies in `idx`'s lanes.
 #[inline(always)]
 fn gather<const W: usize>(bodies: &[BodyLanes], idx: L<W>) -> (Vel<W>, Pose<W>) {
+    let mut rows = [[0; 8]; W];
+    for (r, &b) in rows.iter_mut().zip(idx.0.iter()) {
+        if let Some(b) = bodies.get(b as u32 as usize) {
+            *r = b.0;
+        }
+    }
     let mut v = [[0; W]; 6];
-    for (i, &b) in idx.0.iter().enumerate() {
-        let lane = match bodies.get(b as u32 as usize) {
-            Some(b) => b.0,
-            None => [0; 8],
-        };
-        v[0][i] = lane[VX];
-        v[1][i] = lane[VY];
-        v[2][i] = lane[WR];
-        v[3][i] = lane[DPX];
-        v[4][i] = lane[DPY];
-        v[5][i] = lane[DR];
+    for (k, f) in [VX, VY, WR, DPX, DPY, DR].into_iter().enumerate() {
+        for (i, r) in rows.iter().enumerate() {
+            v[k][i] = r[f];
+        }
     }
     let [vx, vy, w, dpx, dpy, dr] = v;
     ([L(vx), L(vy), L(w)], [L(dpx), L(dpy), L(dr)])
