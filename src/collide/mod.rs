@@ -24,11 +24,13 @@ mod circle_circle;
 mod manifold;
 mod polygon_circle;
 mod polygon_polygon;
+mod toi;
 
 pub use circle_circle::collide_circles;
 pub use manifold::{Manifold, ManifoldPoint, MAX_MANIFOLD_POINTS};
 pub use polygon_circle::collide_polygon_circle;
 pub use polygon_polygon::{collide_polygons, REFERENCE_FACE_TOLERANCE};
+pub(crate) use toi::{time_of_impact, Swept};
 
 use crate::math::{Rot, Scalar, Vector2};
 
