@@ -19,7 +19,14 @@
 //!   impulses; then it is dropped.
 //!
 //! "Touching" means the narrow phase found at least one contact point within the
-//! speculative margin ([`SPECULATIVE_DISTANCE`](crate::limits::SPECULATIVE_DISTANCE)).
+//! speculative distance ([`SPECULATIVE_DISTANCE`](crate::limits::SPECULATIVE_DISTANCE),
+//! 2 cm) at the start of the step: the same at every speed, so `begin` fires for
+//! a pair only once its shapes are that close, never for a fast body that is
+//! merely heading their way or passing beside, and `end` once they are farther
+//! apart. A body fast enough to cross that distance and more in one step is
+//! stopped at the first surface on its way by continuous collision
+//! ([`crate::continuous`]) and touches on the next step, so `begin` still comes
+//! before anything is resolved.
 //!
 //! [`WorldDef::arbiter_persistence`]: crate::WorldDef::arbiter_persistence
 

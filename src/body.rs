@@ -82,6 +82,8 @@ pub struct Body {
     pub(crate) user_data: u64,
     /// Left the world bounds: frozen in place until the game moves it back.
     pub(crate) out_of_bounds: bool,
+    /// Swept against dynamic bodies too when fast (see [`BodyDef::bullet`]).
+    pub(crate) bullet: bool,
     /// Bounding radius about the centre of mass (m), cached from the shape.
     pub(crate) radius: Scalar,
     /// World bounding box, refreshed whenever the body moves (derived state).
@@ -111,6 +113,7 @@ impl Body {
             collision_level: 0,
             user_data: 0,
             out_of_bounds: false,
+            bullet: false,
             radius: ZERO,
             aabb: Rect { min: Vector2::ZERO, max: Vector2::ZERO },
             force_dv: Vector2::ZERO,
@@ -274,6 +277,20 @@ impl Body {
     #[inline]
     pub fn set_user_data(&mut self, data: u64) {
         self.user_data = data;
+    }
+
+    /// True when the body is a bullet (see [`BodyDef::bullet`]).
+    #[inline]
+    #[must_use]
+    pub fn is_bullet(&self) -> bool {
+        self.bullet
+    }
+
+    /// Marks the body a bullet or not (see [`BodyDef::bullet`]); takes effect
+    /// from the next step. Part of the snapshot and the state hash.
+    #[inline]
+    pub fn set_bullet(&mut self, on: bool) {
+        self.bullet = on;
     }
 
     /// True once the body left the world bounds: it is frozen until

@@ -51,6 +51,9 @@ pub struct BodyDef {
     pub collision_level: u32,
     /// A word for the game, e.g. its entity id (default 0). Never read by the engine.
     pub user_data: u64,
+    /// Swept against dynamic bodies too when fast (default false; see
+    /// [`BodyDef::bullet`]).
+    pub bullet: bool,
 }
 
 impl BodyDef {
@@ -81,6 +84,7 @@ impl BodyDef {
             collision_groups: 0,
             collision_level: 0,
             user_data: 0,
+            bullet: false,
         }
     }
 
@@ -189,6 +193,19 @@ impl BodyDef {
     #[must_use]
     pub fn user_data(mut self, data: u64) -> Self {
         self.user_data = data;
+        self
+    }
+
+    /// Marks the body a bullet (Box2D's term): when it is fast, continuous
+    /// collision sweeps it against dynamic bodies as well as static and
+    /// kinematic ones, so a small fast projectile cannot pass through a thin
+    /// dynamic box (see [`crate::continuous`]). Every fast dynamic body is
+    /// already swept against static and kinematic bodies. Costs a sweep per
+    /// nearby body each step it is fast. On a static or kinematic body the
+    /// flag is kept but does nothing (they are never swept).
+    #[must_use]
+    pub fn bullet(mut self, on: bool) -> Self {
+        self.bullet = on;
         self
     }
 }

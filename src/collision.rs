@@ -25,7 +25,7 @@ use crate::index::{
     AUTO_THRESHOLD,
 };
 use crate::limits::SPECULATIVE_DISTANCE;
-use crate::math::Scalar;
+use crate::math::{Scalar, Vector2};
 use crate::step::StepContext;
 
 /// The broad phase a world uses.
@@ -71,6 +71,10 @@ pub(crate) struct BroadPhase<'a> {
     pub(crate) pairs: ManagedSlice<'a, (u32, u32)>,
     /// Sorted body-slot pairs held by joints whose bodies must not collide.
     pub(crate) joint_pairs: ManagedSlice<'a, (u32, u32)>,
+    /// Proxies built this step (`proxies[..live]`).
+    pub(crate) live: usize,
+    /// Joint-held pairs this step (`joint_pairs[..held]`).
+    pub(crate) held: usize,
 }
 
 impl BroadPhase<'_> {
@@ -138,7 +142,9 @@ pub(crate) fn broad_phase(
         return Err(Error::CapacityFull { what: "broad-phase proxy" });
     }
     let n = live;
-    let BroadPhase { index, auto_sweep, proxies, proxy_bodies, pairs, joint_pairs } = bp;
+    bp.live = n;
+    bp.held = held;
+    let BroadPhase { index, auto_sweep, proxies, proxy_bodies, pairs, joint_pairs, .. } = bp;
     let proxies = proxies.get_mut(..n).unwrap_or(&mut []);
     let slots = proxy_bodies.get_mut(..n).unwrap_or(&mut []);
     // Last step's sorted order serves again when it names exactly the bodies
@@ -261,9 +267,13 @@ pub(crate) fn update_arbiters(
         };
         pair_arbiter((ha, ba), (hb, bb), previous, arb);
         let (a, b) = if arb.body_a == ha { (ba, bb) } else { (bb, ba) };
-        let manifold = if candidate && should_collide(a, b) {
-            let margin = SPECULATIVE_DISTANCE + motion_bound(ctx, a) + motion_bound(ctx, b);
-            collide_bodies(a, b, paths, margin)
+        // Contact points only within the speculative distance: the boxes
+        // (stretched along the motion for continuous collision) found the
+        // pair; the narrow phase runs only when the bodies' own boxes are
+        // that close.
+        let near = a.aabb.expand(SPECULATIVE_DISTANCE).overlaps(b.aabb);
+        let manifold = if candidate && near && should_collide(a, b) {
+            collide_bodies(a, b, paths, SPECULATIVE_DISTANCE)
         } else {
             Manifold::EMPTY
         };
@@ -455,29 +465,29 @@ fn pair_arbiter(
     };
 }
 
-/// A body's broad-phase proxy: its box enlarged by the speculative distance and
-/// its motion bound.
+/// A body's broad-phase proxy: its box grown by the speculative distance and
+/// stretched along the path it takes this step at its present velocity, for
+/// continuous collision's candidate pairs (see [`crate::continuous`]). The
+/// stretch only finds pairs; contact points are made only within the
+/// speculative distance of the bodies' own boxes.
+///
+/// The path is `v·dt` in the direction of motion, widened on every side by how
+/// far a turn can carry the surface (|ω|·r·dt). Speeds are taken at most at
+/// the world's limits, which the step enforces: a velocity a game set far above
+/// them cannot inflate the boxes.
 #[inline]
 fn proxy(ctx: &StepContext, b: &Body) -> Proxy {
-    let margin = SPECULATIVE_DISTANCE + motion_bound(ctx, b);
-    Proxy { aabb: b.aabb.expand(margin), is_static: b.body_type == BodyType::Static }
-}
-
-/// The motion bound of a body: how far any point of it can move in `dt` at its
-/// current velocity, as an upper bound: (|vx| + |vy| + |ω|·r)·dt. Contacts are made this much earlier, so the
-/// solver's speculative constraint stops a fast body at the surface instead of
-/// finding it deep inside next step (speculative continuous collision).
-///
-/// Speeds are taken at most at the world's limits, which the step enforces: a
-/// velocity a game set far above them cannot inflate the margins.
-#[inline(always)]
-fn motion_bound(ctx: &StepContext, b: &Body) -> Scalar {
-    if !b.moved_by_step() {
-        return Scalar::ZERO;
+    let mut aabb = b.aabb.expand(SPECULATIVE_DISTANCE);
+    if b.moved_by_step() {
+        let (vmax, wmax) = (ctx.max_linear_speed, ctx.max_angular_speed);
+        let v = b.linear_velocity;
+        let (dx, dy) = (v.x.clamp(-vmax, vmax) * ctx.dt, v.y.clamp(-vmax, vmax) * ctx.dt);
+        let turn = b.angular_velocity.abs().min(wmax) * b.radius * ctx.dt;
+        aabb = aabb.expand(turn);
+        aabb.min += Vector2::new(dx.min(Scalar::ZERO), dy.min(Scalar::ZERO));
+        aabb.max += Vector2::new(dx.max(Scalar::ZERO), dy.max(Scalar::ZERO));
     }
-    let (vmax, wmax) = (ctx.max_linear_speed, ctx.max_angular_speed);
-    let v = b.linear_velocity;
-    ((v.x.abs().min(vmax) + v.y.abs().min(vmax)) + (b.angular_velocity.abs().min(wmax) * b.radius)) * ctx.dt
+    Proxy { aabb, is_static: b.body_type == BodyType::Static }
 }
 
 /// The contact manifold of two bodies in canonical order (normal from A to B),

@@ -181,6 +181,7 @@ mod body_def;
 pub mod collide;
 pub mod collision;
 pub mod constraint;
+pub mod continuous;
 pub mod error;
 pub mod force;
 pub mod geometry;

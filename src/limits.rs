@@ -145,7 +145,10 @@ pub(crate) fn check_components(v: Vector2, max: Scalar, what: &'static str) -> R
 /// Speculative contact distance, in metres (Box2D v3's 4 × linear slop): shapes
 /// closer than this get contact points before they touch, so the solver can stop
 /// them meeting without overshoot, and "touching" for the callbacks means "within
-/// this distance".
+/// this distance". It is the same at every speed: a margin that grew with speed
+/// made contact points between bodies that would pass beside each other (ghost
+/// hits). What one step could carry a fast body through is caught by continuous
+/// collision ([`crate::continuous`]).
 pub const SPECULATIVE_DISTANCE: Scalar = Scalar::lit("0.02");
 
 /// Most solver sub-steps per step.

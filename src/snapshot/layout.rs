@@ -13,7 +13,7 @@
 use super::cursor::Cursor;
 use super::write::Props;
 use super::{
-    checksum, invalid, ARBITER_RECORD, BODY_RECORD, HEADER, JOINT_RECORD, LINK_MASK, LIVE, MAGIC,
+    checksum, invalid, ARBITER_RECORD, BODY_RECORD, BULLET, HEADER, JOINT_RECORD, LINK_MASK, LIVE, MAGIC,
     OUT_OF_BOUNDS, PROPS_RECORD, TRAILER, VERSION,
 };
 use crate::body::{BodyHandle, BodyType, Shape};
@@ -186,7 +186,8 @@ impl<'b> Layout<'b> {
             1 => Shape::Polygon(c.handle()?),
             _ => return Err(invalid("unknown shape")),
         };
-        let body_type = match c.u8()? {
+        let kind = c.u8()?;
+        let body_type = match kind & !BULLET {
             0 => BodyType::Static,
             1 => BodyType::Kinematic,
             2 => BodyType::Dynamic,
@@ -202,6 +203,7 @@ impl<'b> Layout<'b> {
             groups: c.u32()?,
             level: c.u32()?,
             user_data: c.u64()?,
+            bullet: kind & BULLET != 0,
         })
     }
 

@@ -13,7 +13,7 @@
 //! 1. framing, [`HEADER`] = 16 bytes: `ARPS`, the version (u32), and the
 //!    snapshot's total length in bytes (u64, trailer included);
 //! 2. the world: step count, world settings, a checksum of the polygon paths;
-//! 3. the table of body properties (shape, type, mass, material, groups, level,
+//! 3. the table of body properties (shape, type and bullet flag, mass, material, groups, level,
 //!    user data: 58 bytes per run of consecutive bodies that share them);
 //! 4. the body allocator and one 64-byte record per body slot (generation,
 //!    free-list link or flags and properties index, position, rotation,
@@ -97,6 +97,9 @@ pub const ARBITER_RECORD: usize = 58;
 /// Bytes of one joint record.
 pub const JOINT_RECORD: usize = 160;
 
+/// The body-type byte of a properties record: bits 0–1 the type (0 static,
+/// 1 kinematic, 2 dynamic), bit 4 the bullet flag; the other bits are zero.
+const BULLET: u8 = 1 << 4;
 /// The link field of a body record: bit 31 live, bit 30 out of bounds, bits 0–29
 /// the free-list successor (free slot) or the properties index (live slot).
 const LIVE: u32 = 1 << 31;

@@ -2,7 +2,7 @@
 
 use super::hash::Hash64;
 use super::{
-    Part, Sink, ARBITER_RECORD, BODY_RECORD, HEADER, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, NO_LINK,
+    Part, Sink, ARBITER_RECORD, BODY_RECORD, BULLET, HEADER, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, NO_LINK,
     OUT_OF_BOUNDS, PROPS_RECORD, TRAILER, VERSION,
 };
 use crate::arena::NO_SLOT;
@@ -25,6 +25,7 @@ pub(super) struct Props {
     pub(super) groups: u32,
     pub(super) level: u32,
     pub(super) user_data: u64,
+    pub(super) bullet: bool,
 }
 
 impl Props {
@@ -39,6 +40,7 @@ impl Props {
             groups: b.collision_groups,
             level: b.collision_level,
             user_data: b.user_data,
+            bullet: b.bullet,
         }
     }
 }
@@ -317,7 +319,7 @@ fn write_props(s: &mut impl Sink, p: &Props) {
             s.u32(h.generation());
         }
     }
-    s.u8(p.body_type as u8);
+    s.u8(p.body_type as u8 | if p.bullet { BULLET } else { 0 });
     s.scalar(p.mass);
     s.scalar(p.inertia);
     s.scalar(p.friction);

@@ -68,6 +68,8 @@ pub struct SolverBody {
     pub(crate) w: Scalar,
     pub(crate) p: Vector2,
     pub(crate) q: Rot,
+    /// The rotation at the start of the step.
+    pub(crate) q0: Rot,
     /// The angle turned since the start of the step (rad).
     pub(crate) angle: Scalar,
     /// The position at the start of the step.
@@ -88,6 +90,10 @@ pub struct SolverBody {
     pub(crate) moves: bool,
     /// Takes impulses (dynamic, in bounds): contacts change its velocity.
     pub(crate) dynamic: bool,
+    /// Continuous collision's marks (see [`crate::continuous`]).
+    pub(crate) ccd: u8,
+    /// Continuous collision's earliest time of impact this step (1: none).
+    pub(crate) toi: Scalar,
 }
 
 impl SolverBody {
@@ -99,6 +105,7 @@ impl SolverBody {
         w: ZERO,
         p: Vector2::ZERO,
         q: Rot::IDENTITY,
+        q0: Rot::IDENTITY,
         angle: ZERO,
         p0: Vector2::ZERO,
         radius: Scalar::ONE,
@@ -109,6 +116,8 @@ impl SolverBody {
         forced: false,
         moves: false,
         dynamic: false,
+        ccd: 0,
+        toi: Scalar::ONE,
     };
 
     /// Loads a body's state; `inv_n` is 1 / sub-steps, `wmax` the step's
@@ -127,6 +136,7 @@ impl SolverBody {
             w: b.angular_velocity,
             p: b.position,
             q: b.rotation,
+            q0: b.rotation,
             angle: ZERO,
             p0: b.position,
             radius,
@@ -137,6 +147,8 @@ impl SolverBody {
             forced: dynamic,
             moves: b.moved_by_step(),
             dynamic,
+            ccd: 0,
+            toi: Scalar::ONE,
         };
         if dynamic {
             (sb.force_dv, sb.force_dw) = (b.force_dv * inv_n, b.force_dw * inv_n);

@@ -117,6 +117,7 @@ impl World<'_> {
             collision_level: def.collision_level,
             user_data: def.user_data,
             out_of_bounds: false,
+            bullet: def.bullet,
             radius,
             aabb: Rect::default(),
             force_dv: Vector2::ZERO,

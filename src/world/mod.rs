@@ -145,6 +145,8 @@ impl<'a> World<'a> {
                 proxy_bodies: s.proxy_bodies,
                 pairs: s.pairs,
                 joint_pairs: s.joint_pairs,
+                live: 0,
+                held: 0,
             },
             arbiters: ArbiterStore::new(s.arbiters, s.arbiters_next),
             handlers: HandlerTable::new(),

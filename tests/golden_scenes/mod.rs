@@ -22,13 +22,13 @@ use arphysics::{
 
 /// Committed golden hashes, identical in debug and release on every target. A
 /// change to one must be deliberate and explained in its commit message.
-pub const GOLDEN_CORE_SCENE: u64 = 0xb795_399a_d952_542d;
+pub const GOLDEN_CORE_SCENE: u64 = 0x88b8_fbd2_c9ca_3c7d;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_PYRAMID: u64 = 0x4824_b2cf_8384_a768;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_MIXED: u64 = 0xdeba_e3de_aaee_491c;
+pub const GOLDEN_MIXED: u64 = 0x499e_c3ba_57e2_7659;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_LONG: u64 = 0xddea_d3f5_a65b_f24a;
+pub const GOLDEN_LONG: u64 = 0x0330_f2a7_2a22_c49a;
 
 /// Steps of the core scene.
 pub const CORE_STEPS: u32 = 600;
@@ -400,7 +400,9 @@ pub fn mixed() -> Result<Outcome, SceneError> {
         // The upper floor's underside is at y = −2.
         check(w.body(g)?.position().y < q(-2, 1), "mixed: ghosts fell through the floor")?;
     }
-    check(w.body(ice)?.position().x < q(-27, 1), "mixed: the ice box slid off its shelf")?;
+    // Off the shelf's end (x < −28) and down past its top (y = 10.5): where it
+    // lands below depends on how it tumbles.
+    check(w.body(ice)?.position().y < q(9, 1), "mixed: the ice box slid off its shelf")?;
     Ok(out)
 }
 

@@ -1,0 +1,260 @@
+//! Continuous collision: the stage after the solve that keeps fast bodies from
+//! passing through others between two steps (Box2D v3's model).
+//!
+//! Contact points are made only within the constant
+//! [`SPECULATIVE_DISTANCE`], whatever the speed (a margin that grew with speed
+//! stopped bodies that would have passed beside each other). What a step could
+//! skip over is caught here instead, once the solver has moved every body:
+//!
+//! * A dynamic body is **fast** when, this step, its centre moved more than
+//!   half its *core extent* (the least distance from its centre to its
+//!   surface: a circle's radius, a polygon's nearest face), counting a turn as
+//!   `|angle|·r` (its bounding radius `r`). A slower body cannot tunnel: it
+//!   ends less than half its extent inside anything, and the contact pushes it
+//!   back out of the side it came from.
+//! * Each fast body is swept from its pose at the start of the step to its
+//!   pose now against the **static and kinematic** bodies near its path
+//!   (`collide::toi`, a closed-form sweep: no iteration, so no cap to
+//!   reach). A body marked [`bullet`](crate::BodyDef::bullet) is swept
+//!   afterwards, also against the **dynamic** bodies (at their final poses,
+//!   other bullets excepted). The earliest impact wins; the body is put back
+//!   on its path at that moment, [`TOI_GAP`] short of the surface, and keeps
+//!   its velocity, so the next step's contact (within the speculative
+//!   distance) stops or bounces it.
+//! * A body already within reach of a surface at the start of the step (it
+//!   touches the floor it slides on) is swept by its **core** instead, a circle
+//!   of a quarter of its core extent at its centre: it cannot pass through the
+//!   floor, and it is not held back by it either.
+//! * Pairs the game keeps apart are skipped: the collision filter, joints that
+//!   do not collide their bodies, and pairs whose arbiter was not solved this
+//!   step (`begin` or `pre_solve` said no): a bullet through a one-way
+//!   platform goes through.
+//!
+//! The rotation over the step is not swept: each body's shape is taken at its
+//! pose at the start of the step, and the distance to reach is widened by how
+//! far a turn can carry its surface (`|angle|·r`), so an impact is never
+//! found late, only early by at most that much.
+//!
+//! Order: the bodies' sweeps against static and kinematic bodies read nothing
+//! another sweep writes; bullets come after all of them, in body-slot order,
+//! and read only non-bullet bodies. The result depends on the simulation state
+//! alone.
+//!
+//! Near-path candidates come from the broad phase, whose boxes are stretched
+//! along each body's motion at its velocity when the step began. A fast body
+//! whose box now lies outside its broad-phase box (its velocity changed a lot
+//! in the step) is swept against every body whose box meets its path instead.
+
+use crate::arbiter::ArbiterStore;
+use crate::arena::Arena;
+use crate::body::{compute_aabb, Body, BodyType, Shape};
+use crate::collide::{time_of_impact, Swept};
+use crate::collision::{should_collide, BroadPhase};
+use crate::geometry::PolygonPath;
+use crate::limits::SPECULATIVE_DISTANCE;
+use crate::math::scalar::{ONE, ZERO};
+use crate::math::{Rot, Scalar, Transform, Vector2};
+use crate::solver::SolverBody;
+
+/// How far short of a surface a fast body is put back (m): a quarter of the
+/// speculative distance (Box2D v3's linear slop), so that the next step's
+/// narrow phase finds the contact.
+pub const TOI_GAP: Scalar = Scalar::from_bits(SPECULATIVE_DISTANCE.to_bits() / 4);
+
+/// The share of its core extent a body may move in one step without being
+/// swept (Box2D v3's default safety factor).
+const SAFETY: Scalar = Scalar::lit("0.5");
+
+/// The core's radius as a share of the core extent.
+const CORE: Scalar = Scalar::lit("0.25");
+
+/// What continuous collision did in a step (for the step report).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Outcome {
+    /// Pair sweeps computed.
+    pub(crate) sweeps: u32,
+    /// Fast bodies put back to a time of impact.
+    pub(crate) hits: u32,
+}
+
+/// Fast-body marks in [`SolverBody::ccd`].
+pub(crate) const FAST: u8 = 1;
+/// The body's final box left its broad-phase box: swept against every body
+/// whose box meets its path.
+const SCAN: u8 = 2;
+
+/// The least distance from a body's centre to its surface (m).
+fn core_extent(b: &Body, paths: &Arena<'_, PolygonPath>) -> Scalar {
+    match b.shape {
+        Shape::Circle { radius } => radius,
+        Shape::Polygon(h) => paths.get(h).map_or(ZERO, |p| {
+            p.vertices().iter().zip(p.normals()).map(|(v, n)| n.dot(*v)).min().unwrap_or(ZERO).max(ZERO)
+        }),
+    }
+}
+
+/// The swept shape of a body.
+fn swept<'p>(b: &Body, paths: &'p Arena<'_, PolygonPath>) -> Option<Swept<'p>> {
+    match b.shape {
+        Shape::Circle { radius } => Some(Swept::Circle(radius)),
+        Shape::Polygon(h) => paths.get(h).map(Swept::Polygon),
+    }
+}
+
+/// Runs continuous collision after the solve. `solver` holds every body's
+/// pose at the start of the step (`p0`, `q0`) and its turn (`angle`); the
+/// bodies hold their poses now (still with their start-of-step boxes).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn run(
+    bodies: &mut Arena<'_, Body>,
+    paths: &Arena<'_, PolygonPath>,
+    solver: &mut [SolverBody],
+    bp: &BroadPhase<'_>,
+    candidates: usize,
+    arbiters: &ArbiterStore<'_>,
+) -> Outcome {
+    let mut out = Outcome::default();
+    // Which bodies are fast.
+    let mut any = false;
+    for (h, b) in bodies.iter() {
+        let Some(sb) = solver.get_mut(h.index() as usize) else { continue };
+        sb.ccd = 0;
+        sb.toi = ONE;
+        if b.body_type != BodyType::Dynamic || b.out_of_bounds {
+            continue;
+        }
+        let d = b.position - sb.p0;
+        let motion = d.x.abs() + d.y.abs() + sb.angle.abs() * b.radius;
+        if motion > core_extent(b, paths) * SAFETY {
+            sb.ccd = FAST;
+            any = true;
+        }
+    }
+    if !any {
+        return out;
+    }
+    // A fast body whose box now is outside its broad-phase box was not
+    // covered by the candidate pairs.
+    let proxies = bp.proxies.get(..bp.live).unwrap_or(&[]);
+    let slots = bp.proxy_bodies.get(..bp.live).unwrap_or(&[]);
+    for (p, &s) in proxies.iter().zip(slots) {
+        let (Some(sb), Some(b)) = (solver.get_mut(s as usize), bodies.get_at(s)) else { continue };
+        if sb.ccd & FAST != 0 && !p.aabb.contains_rect(compute_aabb(b, paths)) {
+            sb.ccd |= SCAN;
+        }
+    }
+    let held = bp.joint_pairs.get(..bp.held).unwrap_or(&[]);
+    for bullets in [false, true] {
+        let pass = Pass { bodies: &*bodies, paths, arbiters, held, bullets };
+        // Candidate pairs, each way round.
+        for &(x, y) in bp.candidates(candidates) {
+            for (f, o) in [(x, y), (y, x)] {
+                if let Some(t) = pass.pair(solver, f, o, false, &mut out.sweeps) {
+                    if let Some(sb) = solver.get_mut(f as usize) {
+                        sb.toi = sb.toi.min(t);
+                    }
+                }
+            }
+        }
+        // Bodies whose path left their broad-phase box: every body whose box
+        // meets the path.
+        for (p, &f) in proxies.iter().zip(slots) {
+            let (Some(sb), Some(b)) = (solver.get(f as usize), bodies.get_at(f)) else { continue };
+            if sb.ccd & SCAN == 0 || b.bullet != bullets {
+                continue;
+            }
+            let path = p.aabb.union(compute_aabb(b, paths)).expand(SPECULATIVE_DISTANCE);
+            for (q, &o) in proxies.iter().zip(slots) {
+                if o == f || !q.aabb.overlaps(path) {
+                    continue;
+                }
+                if let Some(t) = pass.pair(solver, f, o, true, &mut out.sweeps) {
+                    if let Some(sb) = solver.get_mut(f as usize) {
+                        sb.toi = sb.toi.min(t);
+                    }
+                }
+            }
+        }
+        // This pass's impacts: each body back on its path at its earliest one.
+        for (h, b) in bodies.iter_mut() {
+            let Some(sb) = solver.get(h.index() as usize) else { continue };
+            if sb.ccd & FAST == 0 || b.bullet != bullets || sb.toi >= ONE {
+                continue;
+            }
+            let t = sb.toi;
+            b.position = sb.p0 + (b.position - sb.p0) * t;
+            let (c, s) = (sb.q0.c + (b.rotation.c - sb.q0.c) * t, sb.q0.s + (b.rotation.s - sb.q0.s) * t);
+            b.rotation = Rot { c, s }.normalized();
+            out.hits = out.hits.saturating_add(1);
+        }
+    }
+    out
+}
+
+/// One pass's view: the non-bullet fast bodies against static and kinematic
+/// bodies, or the bullets against every non-bullet body.
+struct Pass<'p, 'a> {
+    bodies: &'p Arena<'a, Body>,
+    paths: &'p Arena<'a, PolygonPath>,
+    arbiters: &'p ArbiterStore<'a>,
+    /// Body-slot pairs a joint keeps from colliding, sorted.
+    held: &'p [(u32, u32)],
+    bullets: bool,
+}
+
+impl Pass<'_, '_> {
+    /// The time of impact of fast body `f` against body `o`, if this pass
+    /// sweeps that pair and they meet on the way. `filter` applies the
+    /// broad phase's pair filter (the candidate pairs have passed it).
+    fn pair(&self, solver: &[SolverBody], f: u32, o: u32, filter: bool, sweeps: &mut u32) -> Option<Scalar> {
+        let (sf, so) = (solver.get(f as usize)?, solver.get(o as usize)?);
+        let (bf, bo) = (self.bodies.get_at(f)?, self.bodies.get_at(o)?);
+        if sf.ccd & FAST == 0 || bf.bullet != self.bullets || bo.out_of_bounds {
+            return None;
+        }
+        // The target's pose to sweep against: static and kinematic bodies move
+        // (or not) from their pose at the start of the step; a dynamic one
+        // (bullets only, bullets excepted) stands at its final pose.
+        let (xo, motion_o, turn_o) = match bo.body_type {
+            BodyType::Static | BodyType::Kinematic => {
+                (Transform::new(so.p0, so.q0), bo.position - so.p0, so.angle)
+            }
+            BodyType::Dynamic if self.bullets && !bo.bullet => (bo.transform(), Vector2::ZERO, ZERO),
+            BodyType::Dynamic => return None,
+        };
+        let key = (f.min(o), f.max(o));
+        if filter && (!should_collide(bf, bo) || self.held.binary_search(&key).is_ok()) {
+            return None;
+        }
+        // A pair the game chose not to solve this step is not stopped either.
+        if let Ok(k) = self.arbiters.live().binary_search_by_key(&key, |a| a.key()) {
+            if self.arbiters.live().get(k).is_some_and(|a| !a.solve) {
+                return None;
+            }
+        }
+        let (shape_f, shape_o) = (swept(bf, self.paths)?, swept(bo, self.paths)?);
+        let xf = Transform::new(sf.p0, sf.q0);
+        let d = (bf.position - sf.p0) - motion_o;
+        let reach_o = turn_o.abs() * bo.radius;
+        let gap = TOI_GAP + reach_o + sf.angle.abs() * bf.radius;
+        *sweeps = sweeps.saturating_add(1);
+        let t = time_of_impact(shape_o, xo, shape_f, xf, d, gap)?;
+        if t > ZERO {
+            return Some(t);
+        }
+        // Within reach already: sweep the core, which does not turn.
+        let core = Swept::Circle(core_extent(bf, self.paths) * CORE);
+        *sweeps = sweeps.saturating_add(1);
+        time_of_impact(shape_o, xo, core, xf, d, TOI_GAP + reach_o).filter(|&t| t > ZERO)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_gap_is_a_quarter_of_the_speculative_distance() {
+        assert_eq!(TOI_GAP, Scalar::lit("0.005"));
+    }
+}
