@@ -4,6 +4,10 @@
 //! the step, `remove_dead_player` removes both bodies. A body can never be
 //! removed during a step: callbacks only get read access and the post-step queue.
 //!
+//! The bullet is hit-tested as Box2D's bullets are: at any speed the world
+//! allows (here up to 2,048 m/s, 34 m a step) it cannot pass through the player
+//! between two steps, and `begin` fires only when it touches.
+//!
 //! Run: `cargo run --example bullet_player`
 
 use arphysics::{
@@ -43,36 +47,60 @@ fn remove_dead_player(world: &mut World<'_>, key: u64) {
     println!("post-step: removed player {removed_player}, bullet {removed_bullet}");
 }
 
-fn main() -> Result<(), arphysics::Error> {
+/// Fires a bullet from a shooter at a player 10 m away at `speed` m/s and
+/// steps until both are gone; checks that the bullet never began with its
+/// shooter (it spawns 0.15 m from the shooter's surface, moving away).
+fn duel(speed: f64) -> Result<(), arphysics::Error> {
     let s = Scalar::from_num::<f64>;
     let mut buffers = WorldBuffers::<8, 32>::new();
-    let bounds = Rect::from_corners(Vector2::from_int(-50, -50), Vector2::from_int(50, 50));
-    let mut world = World::new(WorldDef::with_bounds(bounds), buffers.storage())?;
+    let bounds = Rect::from_corners(Vector2::from_int(-400, -50), Vector2::from_int(400, 50));
+    // The fastest the engine allows, so that every speed below is legal.
+    let def = WorldDef { max_linear_speed: s(2048.0), ..WorldDef::with_bounds(bounds) };
+    let mut world = World::new(def, buffers.storage())?;
     world.add_collision_handler(
         PLAYER_LEVEL,
         BULLET_LEVEL,
         FnHandler { begin: Some(bullet_hit), ..FnHandler::default() },
     )?;
 
+    let shooter = world.add_body(BodyDef::circle(s(0.5)).position(Vector2::from_int(-5, 0)))?;
     let player = world
         .add_body(BodyDef::circle(s(0.5)).position(Vector2::from_int(5, 0)).collision_level(PLAYER_LEVEL))?;
+    // A bullet (continuous collision against dynamic bodies too), so that no
+    // speed carries it through the player between two steps.
     let bullet = world.add_body(
         BodyDef::circle(s(0.05))
-            .position(Vector2::from_int(-5, 0))
-            .linear_velocity(Vector2::from_int(100, 0))
+            .position(Vector2::new(s(-4.35), s(0.0)))
+            .linear_velocity(Vector2::new(s(speed), s(0.0)))
             .mass(s(0.01))
+            .bullet(true)
             .collision_level(BULLET_LEVEL),
     )?;
     // The game remembers which bullet is flying at the player.
     world.body_mut(player)?.set_user_data((u64::from(bullet.index()) << 32) | u64::from(bullet.generation()));
 
-    for step in 1..=30 {
+    println!("bullet at {speed} m/s:");
+    for step in 1..=60 {
         let report = world.step(s(1.0 / 60.0))?;
+        // `begin` means touching: the bullet never begins with its shooter.
+        let with_shooter = world.arbiters().any(|a| {
+            let pair = [a.body_a(), a.body_b()];
+            pair.contains(&shooter) && pair.contains(&bullet)
+        });
+        assert!(!with_shooter, "the bullet touched its shooter");
         if report.post_step_callbacks > 0 {
-            println!("step {step}: {} post-step callback(s) ran", report.post_step_callbacks);
+            println!("  step {step}: {} post-step callback(s) ran", report.post_step_callbacks);
         }
     }
-    println!("bodies left in the world: {}", world.body_count());
+    println!("  bodies left in the world: {}", world.body_count());
     assert!(world.body(player).is_err() && world.body(bullet).is_err());
+    assert!(world.body(shooter).is_ok(), "the shooter is still there");
+    Ok(())
+}
+
+fn main() -> Result<(), arphysics::Error> {
+    for speed in [20.0, 100.0, 400.0, 2048.0] {
+        duel(speed)?;
+    }
     Ok(())
 }
