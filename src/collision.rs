@@ -25,7 +25,7 @@ use crate::index::{
     AUTO_THRESHOLD,
 };
 use crate::limits::SPECULATIVE_DISTANCE;
-use crate::math::{Scalar, Vector2};
+use crate::math::{Rect, Scalar, Vector2};
 use crate::step::StepContext;
 
 /// The broad phase a world uses.
@@ -271,7 +271,7 @@ pub(crate) fn update_arbiters(
         // (stretched along the motion for continuous collision) found the
         // pair; the narrow phase runs only when the bodies' own boxes are
         // that close.
-        let near = a.aabb.expand(SPECULATIVE_DISTANCE).overlaps(b.aabb);
+        let near = boxes_within(a.aabb, b.aabb, SPECULATIVE_DISTANCE);
         let manifold = if candidate && near && should_collide(a, b) {
             collide_bodies(a, b, paths, SPECULATIVE_DISTANCE)
         } else {
@@ -521,6 +521,12 @@ fn flip(mut m: Manifold) -> Manifold {
         core::mem::swap(&mut p.anchor_a, &mut p.anchor_b);
     }
     m
+}
+
+/// True when boxes `a` and `b` are at most `d` apart on both axes.
+#[inline]
+fn boxes_within(a: Rect, b: Rect, d: Scalar) -> bool {
+    b.min.x - a.max.x <= d && a.min.x - b.max.x <= d && b.min.y - a.max.y <= d && a.min.y - b.max.y <= d
 }
 
 /// Size of the union of two key-sorted lists.

@@ -87,9 +87,7 @@ const SCAN: u8 = 2;
 fn core_extent(b: &Body, paths: &Arena<'_, PolygonPath>) -> Scalar {
     match b.shape {
         Shape::Circle { radius } => radius,
-        Shape::Polygon(h) => paths.get(h).map_or(ZERO, |p| {
-            p.vertices().iter().zip(p.normals()).map(|(v, n)| n.dot(*v)).min().unwrap_or(ZERO).max(ZERO)
-        }),
+        Shape::Polygon(h) => paths.get(h).map_or(ZERO, PolygonPath::core_extent),
     }
 }
 

@@ -83,6 +83,8 @@ pub struct PolygonPath {
     pub(crate) centroid: Vector2,
     /// Largest distance from the centroid to a vertex (bounding radius), in m.
     pub(crate) radius: Scalar,
+    /// Least distance from the centroid to a face's line (core extent), in m.
+    pub(crate) core: Scalar,
 }
 
 impl PolygonPath {
@@ -220,7 +222,7 @@ impl PolygonPath {
         // Units: 2^-128 m⁴; / 12 and to Q32.32 (2^-32 m⁴): / (3 · 2^98).
         let inertia = pos.saturating_sub(neg).div_round(98, 3).ok_or(TOO_LARGE)?;
 
-        Ok(Self {
+        let mut path = Self {
             vertices,
             normals,
             count,
@@ -229,7 +231,12 @@ impl PolygonPath {
             unit_inertia: Scalar::from_bits(i64::try_from(inertia).map_err(|_| TOO_LARGE)?),
             centroid: from_bits(widen(centroid)),
             radius: Scalar::from_bits(to_i64(ceil_sqrt(radius2))?),
-        })
+            core: Scalar::ZERO,
+        };
+        path.core =
+            path.vertices().iter().zip(path.normals()).map(|(v, n)| n.dot(*v)).min().unwrap_or_default();
+        path.core = path.core.max(Scalar::ZERO);
+        Ok(path)
     }
 
     /// An axis-aligned rectangle `width` × `height` metres centred on the origin.
@@ -313,6 +320,15 @@ impl PolygonPath {
     #[must_use]
     pub fn radius(&self) -> Scalar {
         self.radius
+    }
+
+    /// Core extent: the least distance from the centroid to a face's line (m),
+    /// the radius of the largest circle about the centroid inside the polygon.
+    /// Continuous collision measures what counts as fast against it.
+    #[inline]
+    #[must_use]
+    pub fn core_extent(&self) -> Scalar {
+        self.core
     }
 }
 
