@@ -7,14 +7,12 @@ use crate::arena::Handle;
 use crate::body::Body;
 use crate::error::Error;
 use crate::math::scalar::{Scalar, ZERO};
-use crate::math::Matrix22;
 use crate::math::{Rot, Vector2};
-use crate::solver::{Bias, Softness, SolverBody};
+use crate::solver::{Bias, BodyLanes, JointLanes, JointMasses, Softness, SolverBody};
 
 use super::def::validate_motor;
-use super::maths::point_mass_inverse;
 use super::rod::Distance;
-use super::{pivot, rod, spring, weld, JointDef, JointKind, Motor};
+use super::{pivot, rod, spring, weld, JointDef, JointKind, MaxTorque, Motor};
 
 /// Stiffness of the soft position correction of rods, ropes, pivots and welds, Hz
 /// (Box2D v3's joint default; capped at a quarter of the sub-step rate).
@@ -46,14 +44,12 @@ pub struct Joint {
     /// Broke this step; removed after it.
     pub(crate) broken: bool,
     // Per-step solver data (derived).
-    pub(crate) soft: crate::solver::Softness,
+    /// Inverse masses and inertias (springs, which stay in `Scalar`).
     pub(crate) inv_mass: [Scalar; 2],
     pub(crate) inv_inertia: [Scalar; 2],
-    /// 1 / (iA + iB): the mass against relative rotation (pivot, weld).
-    pub(crate) axial_mass: Scalar,
-    /// The inverse of the point constraint's 2×2 mass matrix at the start of the
-    /// step (pivot, weld); `None` when singular.
-    pub(crate) point_mass: Option<Matrix22>,
+    /// Everything else the sub-steps use, in the solver's 32-bit formats
+    /// (rebuilt from the impulses above at every prepare).
+    pub(crate) lanes: JointLanes,
 }
 
 impl Joint {
@@ -105,70 +101,165 @@ impl Joint {
             limit_impulse: ZERO,
             step_linear: Vector2::ZERO,
             broken: false,
-            soft: Softness::RIGID,
             inv_mass: [ZERO; 2],
             inv_inertia: [ZERO; 2],
-            axial_mass: ZERO,
-            point_mass: None,
+            lanes: JointLanes::INACTIVE,
         }
     }
 
-    /// Once per step: masses, and the step's joint softness (see
-    /// `StepContext::joint_softness`).
-    pub(crate) fn prepare(&mut self, a: &Body, b: &Body, soft: Softness) {
+    /// Once per step: masses, the step's joint softness (see
+    /// `StepContext::joint_softness`), the impulses in lane formats and the
+    /// pose of the first sub-step. `sa`, `sb` are the solver's copies of `a`
+    /// and `b`; `h` is the sub-step.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn prepare(
+        &mut self,
+        a: &Body,
+        b: &Body,
+        sa: &SolverBody,
+        sb: &SolverBody,
+        soft: Softness,
+        h: Scalar,
+        inv_h: Scalar,
+    ) {
         let (ma, ia) = crate::solver::inverse_mass(a);
         let (mb, ib) = crate::solver::inverse_mass(b);
         self.inv_mass = [ma, mb];
         self.inv_inertia = [ia, ib];
-        // Divisions are slow in fixed point: the masses are inverted once per
-        // step, at the step's anchors, as Box2D v2 does (v3 re-solves the 2×2
-        // system every iteration, which here would cost two divisions a time).
-        self.axial_mass = (ia + ib).recip();
-        self.point_mass = if matches!(self.def.kind, JointKind::Pivot { .. } | JointKind::Weld) {
-            let ra = a.rotation.rotate(self.def.anchor_a);
-            let rb = b.rotation.rotate(self.def.anchor_b);
-            point_mass_inverse(ma, ia, ra, mb, ib, rb)
-        } else {
-            None
+        self.step_linear = Vector2::ZERO;
+        let (point, motor, limits) = match self.def.kind {
+            JointKind::Spring { .. } | JointKind::DampedSpring { .. } => {
+                self.lanes = JointLanes::INACTIVE;
+                return;
+            }
+            JointKind::Rod { .. } | JointKind::Rope { .. } => (false, None, None),
+            JointKind::Pivot { limits, motor } => (true, motor, limits),
+            JointKind::Weld => (true, None, None),
         };
-        self.soft = soft;
+        let motor = motor.map(|m| {
+            let max = match m.max_torque {
+                MaxTorque::Limited(t) => Some(t * h),
+                MaxTorque::Unlimited => None,
+            };
+            (m.speed, max)
+        });
+        let masses = JointMasses {
+            inv_mass: self.inv_mass,
+            inv_inertia: self.inv_inertia,
+            anchors: [self.def.anchor_a, self.def.anchor_b],
+            world_point: self.def.body_b.is_none(),
+            point,
+            motor,
+            limits,
+        };
+        let angular = [self.angular_impulse, self.motor_impulse, self.limit_impulse];
+        self.lanes = JointLanes::prepare(&masses, sa, sb, soft, inv_h, self.impulse, angular);
+        self.refresh(sa, sb);
+    }
+
+    /// A joint whose bodies are gone this step: nothing to solve, nothing to
+    /// store.
+    pub(crate) fn deactivate(&mut self) {
+        self.lanes = JointLanes::INACTIVE;
         self.step_linear = Vector2::ZERO;
     }
 
-    /// After the sub-steps: the step's impulse magnitude; true when it breaks.
+    /// The pose-dependent part at the bodies' current pose: arms, position
+    /// error, a rod's axis, a limited pivot's or a weld's relative angle.
+    fn refresh(&mut self, a: &SolverBody, b: &SolverBody) {
+        match self.def.kind {
+            JointKind::Spring { .. } | JointKind::DampedSpring { .. } => {}
+            JointKind::Rod { length } | JointKind::Rope { max_length: length } => {
+                self.lanes.pose(a, b);
+                self.lanes.axis(length);
+            }
+            JointKind::Pivot { limits, .. } => {
+                self.lanes.pose(a, b);
+                if limits.is_some() {
+                    self.lanes.set_angle(pivot::relative_angle(self, a, b));
+                }
+            }
+            JointKind::Weld => {
+                self.lanes.pose(a, b);
+                self.lanes.set_angle(pivot::relative_angle(self, a, b));
+            }
+        }
+    }
+
+    /// After the sub-steps: the impulses back in `Scalar` (N·s, N·m·s), the
+    /// step's impulse; true when it breaks.
     pub(crate) fn finish_step(&mut self) -> bool {
+        let (linear, angular) = self.lanes.active();
+        match self.def.kind {
+            JointKind::Spring { .. } | JointKind::DampedSpring { .. } => {}
+            JointKind::Rod { .. } | JointKind::Rope { .. } => {
+                if linear {
+                    self.impulse.x = self.lanes.linear_impulse().x;
+                }
+            }
+            JointKind::Pivot { .. } | JointKind::Weld => {
+                if linear {
+                    self.impulse = self.lanes.linear_impulse();
+                }
+                if angular {
+                    [self.angular_impulse, self.motor_impulse, self.limit_impulse] =
+                        self.lanes.angular_impulses();
+                }
+            }
+        }
+        self.step_linear += self.lanes.step_linear();
         // The magnitude costs a square root: only joints that can break need it.
         self.def.break_impulse.is_some_and(|limit| self.step_linear.length() > limit)
     }
 
     /// Applies the impulses it ended the last sub-step with.
-    pub(crate) fn warm_start(&mut self, a: &mut SolverBody, b: &mut SolverBody) {
+    pub(crate) fn warm_start(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes) {
+        let world_point = self.def.body_b.is_none();
+        let l = &mut self.lanes;
         match self.def.kind {
             JointKind::Spring { .. } | JointKind::DampedSpring { .. } => {}
-            JointKind::Rod { .. } | JointKind::Rope { .. } => rod::warm_start(self, a, b),
-            JointKind::Pivot { .. } => pivot::warm_start(self, a, b),
-            JointKind::Weld => weld::warm_start(self, a, b),
+            JointKind::Rod { .. } | JointKind::Rope { .. } => l.warm_axial(la, lb),
+            JointKind::Pivot { .. } => {
+                l.warm_point(la, lb);
+                l.warm_angular(la, lb, world_point);
+            }
+            JointKind::Weld => {
+                l.warm_point(la, lb);
+                l.warm_weld(la, lb);
+            }
         }
     }
 
     /// One iteration: with `Bias::On` in the biased sweep of each sub-step
-    /// (springs apply their force only then), `Bias::Off` in the relax sweep.
-    pub(crate) fn solve(&mut self, a: &mut SolverBody, b: &mut SolverBody, h: Scalar, bias: Bias) {
+    /// (springs apply their force only then), `Bias::Off` in the relax sweep,
+    /// which follows the integration and so first measures the new pose.
+    pub(crate) fn solve(
+        &mut self,
+        (a, la): (&mut SolverBody, &mut BodyLanes),
+        (b, lb): (&mut SolverBody, &mut BodyLanes),
+        h: Scalar,
+        bias: Bias,
+    ) {
+        if bias == Bias::Off {
+            self.refresh(a, b);
+        }
         match self.def.kind {
             JointKind::Spring { stiffness, rest_length } => {
                 if bias == Bias::On {
-                    spring::apply(self, a, b, stiffness, ZERO, rest_length, h);
+                    spring::apply(self, (a, la), (b, lb), stiffness, ZERO, rest_length, h);
                 }
             }
             JointKind::DampedSpring { stiffness, damping, rest_length } => {
                 if bias == Bias::On {
-                    spring::apply(self, a, b, stiffness, damping, rest_length, h);
+                    spring::apply(self, (a, la), (b, lb), stiffness, damping, rest_length, h);
                 }
             }
-            JointKind::Rod { length } => rod::solve(self, a, b, length, Distance::Exact, h, bias),
-            JointKind::Rope { max_length } => rod::solve(self, a, b, max_length, Distance::AtMost, h, bias),
-            JointKind::Pivot { limits, motor } => pivot::solve(self, a, b, limits, motor, h, bias),
-            JointKind::Weld => weld::solve(self, a, b, h, bias),
+            JointKind::Rod { .. } => rod::solve(self, la, lb, Distance::Exact, bias),
+            JointKind::Rope { .. } => rod::solve(self, la, lb, Distance::AtMost, bias),
+            JointKind::Pivot { limits, motor } => {
+                pivot::solve(self, la, lb, limits.is_some(), motor.is_some(), bias)
+            }
+            JointKind::Weld => weld::solve(self, la, lb, bias),
         }
     }
 }

@@ -1,5 +1,6 @@
-//! The maths the built-in joints share: where the anchors are in world space,
-//! the point-to-point constraint's mass, applying an impulse to the two bodies,
+//! The maths the built-in joints share in `Scalar`: where the anchors are in
+//! world space and applying an impulse (springs), the point-to-point
+//! constraint's mass (prepare),
 //! and the static stand-in body of a joint to a world point.
 
 use crate::body::Body;
@@ -22,7 +23,7 @@ pub(crate) fn anchors(j: &Joint, a: &SolverBody, b: &SolverBody) -> (Vector2, Ve
 /// of a point-to-point constraint with arms `ra`, `rb`, each entry divided
 /// exactly (the determinant is tiny for heavy bodies, where 1/det would lose
 /// the digits); `None` when singular.
-pub(super) fn point_mass_inverse(
+pub(crate) fn point_mass_inverse(
     ma: Scalar,
     ia: Scalar,
     ra: Vector2,
@@ -56,13 +57,6 @@ pub(crate) fn apply_linear(
     a.w -= ia * ra.cross(p);
     b.v += p * mb;
     b.w += ib * rb.cross(p);
-}
-
-/// Applies an angular impulse `l` (negated on A).
-pub(crate) fn apply_angular(j: &Joint, a: &mut SolverBody, b: &mut SolverBody, l: Scalar) {
-    let [ia, ib] = j.inv_inertia;
-    a.w -= ia * l;
-    b.w += ib * l;
 }
 
 /// A static body at the origin: the "other body" of a joint to a world point.

@@ -71,6 +71,7 @@ mod body;
 mod colour;
 mod contact;
 mod dispatch;
+mod joint_lanes;
 mod lanes;
 mod softness;
 mod sweep;
@@ -81,8 +82,9 @@ pub use dispatch::{limit_simd_level, simd_level, SimdLevel};
 
 pub(crate) use body::inverse_mass;
 use contact::LaneParams;
+pub(crate) use joint_lanes::{JointLanes, JointMasses};
 use managed::ManagedSlice;
-pub(crate) use softness::{Row, Softness};
+pub(crate) use softness::Softness;
 pub(crate) use sweep::{Bias, Sweep};
 
 use crate::arbiter::ArbiterStore;
@@ -132,7 +134,7 @@ pub(crate) fn solve(
     let h = ctx.h;
     let params = LaneParams::new(ctx);
     load(ctx, bodies, arbiters, solver);
-    prepare_joints(ctx, bodies, joints, constraints);
+    prepare_joints(ctx, bodies, &solver.bodies, joints, constraints);
     // The built-in joints work on the solver's bodies; the game's constraints
     // see `Body`, so when there are any the solver's copy is written to the
     // bodies around their pass.
@@ -143,7 +145,7 @@ pub(crate) fn solve(
         for (sb, lane) in solver.bodies.iter_mut().zip(solver.lanes.iter_mut()).filter(|(sb, _)| sb.forced) {
             sb.add_force(lane);
         }
-        for_each_joint(joints, solver, Sweep::Forward, |j, a, b| j.warm_start(a, b));
+        for_each_joint(joints, solver, Sweep::Forward, |j, (_, la), (_, lb)| j.warm_start(la, lb));
         let count_totals = substep > 0;
         dispatch::run(solver, warm_start_direction(substep), &contact::WarmStart { count_totals });
         for_each_joint(joints, solver, Sweep::Forward, |j, a, b| j.solve(a, b, h, Bias::On));
@@ -229,14 +231,19 @@ fn reload_bodies(solver: &mut Solver<'_>, bodies: &Arena<'_, Body>) {
     }
 }
 
-/// Runs `f` on every joint with its two solver bodies, in joint-slot order
-/// (`Sweep::Forward`) or the reverse. A joint to a world point gets a static
-/// stand-in body for B.
+/// A solver body with its lanes.
+type BodyPair<'b> = (&'b mut SolverBody, &'b mut BodyLanes);
+
+/// Runs `f` on every joint with its two solver bodies and their lanes, in
+/// joint-slot order (`Sweep::Forward`) or the reverse. A joint to a world
+/// point gets a static stand-in body for B. The joints write the lanes as the
+/// contact kernels do; the next [`SolverBody::pull`] carries what they did
+/// into the `Scalar` velocity.
 fn for_each_joint(
     joints: &mut Arena<'_, Joint, JointMarker>,
     solver: &mut Solver<'_>,
     order: Sweep,
-    mut f: impl FnMut(&mut Joint, &mut SolverBody, &mut SolverBody),
+    mut f: impl FnMut(&mut Joint, BodyPair<'_>, BodyPair<'_>),
 ) {
     let bodies: &mut [SolverBody] = &mut solver.bodies;
     let lanes: &mut [BodyLanes] = &mut solver.lanes;
@@ -254,45 +261,36 @@ fn for_each_joint(
                 if let (Some((a, b)), Some((la, lb))) =
                     (body::pair_at(bodies, ia, ib), body::pair_at(lanes, ia, ib))
                 {
-                    a.pull(la);
-                    b.pull(lb);
-                    f(j, a, b);
-                    push_dynamic(a, la);
-                    push_dynamic(b, lb);
+                    f(j, (a, la), (b, lb));
                 }
             }
             None => {
-                let mut ground = SolverBody::EMPTY;
+                let (mut ground, mut ground_lanes) = (SolverBody::EMPTY, BodyLanes::EMPTY);
                 if let (Some(a), Some(la)) = (bodies.get_mut(ia as usize), lanes.get_mut(ia as usize)) {
-                    a.pull(la);
-                    f(j, a, &mut ground);
-                    push_dynamic(a, la);
+                    f(j, (a, la), (&mut ground, &mut ground_lanes));
                 }
             }
         }
     }
 }
 
-/// Moves what a joint did to a dynamic body's `Scalar` velocity into its
-/// lanes.
-fn push_dynamic(sb: &mut SolverBody, lane: &mut BodyLanes) {
-    if sb.dynamic {
-        sb.push(lane);
-    }
-}
-
-/// Once per step: joint masses and softness; the game's `prepare`.
+/// Once per step: joint masses, softness and lane formats; the game's
+/// `prepare`. `sbodies` are the solver's copies of `bodies`, just loaded.
 fn prepare_joints(
     ctx: &StepContext,
     bodies: &Arena<'_, Body>,
+    sbodies: &[SolverBody],
     joints: &mut Arena<'_, Joint, JointMarker>,
     constraints: &mut UserConstraints<'_>,
 ) {
     let ground = crate::constraint::ground();
+    let sground = SolverBody::EMPTY;
     for (_, j) in joints.iter_mut() {
         let b = j.def.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
-        if let Some(a) = bodies.get(j.def.body_a) {
-            j.prepare(a, b, ctx.joint_softness);
+        let sb = j.def.body_b.and_then(|hb| sbodies.get(hb.index() as usize)).unwrap_or(&sground);
+        match (bodies.get(j.def.body_a), sbodies.get(j.def.body_a.index() as usize)) {
+            (Some(a), Some(sa)) => j.prepare(a, b, sa, sb, ctx.joint_softness, ctx.h, ctx.inv_h),
+            _ => j.deactivate(),
         }
     }
     // A dormant game constraint (a body of it removed) is skipped.
