@@ -149,12 +149,13 @@ impl Joint {
             anchors: [self.def.anchor_a, self.def.anchor_b],
             world_point: self.def.body_b.is_none(),
             point,
+            angular: matches!(self.def.kind, JointKind::Weld) || motor.is_some() || limits.is_some(),
             motor,
             limits,
         };
         let angular = [self.angular_impulse, self.motor_impulse, self.limit_impulse];
         self.lanes = JointLanes::prepare(&masses, sa, sb, soft, inv_h, self.impulse, angular);
-        self.refresh(sa, sb);
+        self.measure(sa, sb);
     }
 
     /// A joint whose bodies are gone this step: nothing to solve, nothing to
@@ -165,24 +166,26 @@ impl Joint {
     }
 
     /// The pose-dependent part at the bodies' current pose: arms, position
-    /// error, a rod's axis, a limited pivot's or a weld's relative angle.
+    /// error, then [`measure`](Self::measure).
     fn refresh(&mut self, a: &SolverBody, b: &SolverBody) {
+        if !matches!(self.def.kind, JointKind::Spring { .. } | JointKind::DampedSpring { .. }) {
+            self.lanes.pose(a, b);
+            self.measure(a, b);
+        }
+    }
+
+    /// What the arms and position error imply (after `pose`): a rod's axis, a
+    /// limited pivot's or a weld's relative angle.
+    fn measure(&mut self, a: &SolverBody, b: &SolverBody) {
         match self.def.kind {
             JointKind::Spring { .. } | JointKind::DampedSpring { .. } => {}
-            JointKind::Rod { length } | JointKind::Rope { max_length: length } => {
-                self.lanes.pose(a, b);
-                self.lanes.axis(length);
-            }
+            JointKind::Rod { length } | JointKind::Rope { max_length: length } => self.lanes.axis(length),
             JointKind::Pivot { limits, .. } => {
-                self.lanes.pose(a, b);
                 if limits.is_some() {
                     self.lanes.set_angle(pivot::relative_angle(self, a, b));
                 }
             }
-            JointKind::Weld => {
-                self.lanes.pose(a, b);
-                self.lanes.set_angle(pivot::relative_angle(self, a, b));
-            }
+            JointKind::Weld => self.lanes.set_angle(pivot::relative_angle(self, a, b)),
         }
     }
 

@@ -17,7 +17,12 @@
 //! * rods, ropes, pivots and welds are velocity constraints with Box2D v3's soft
 //!   position correction (a stiff spring-damper of [`JOINT_HERTZ`] Hz, damping
 //!   ratio [`JOINT_DAMPING_RATIO`]), warm-started from the impulses they ended the
-//!   last sub-step with, and relaxed like contacts.
+//!   last sub-step with, and relaxed like contacts. Their iterations run in the
+//!   solver's 32-bit formats on the bodies' lane velocities, as the contacts
+//!   do: impulses in velocity units, masses as ratios (the format table is in
+//!   `src/solver/joint_lanes.rs`). Prepare turns the persistent impulses (N·s,
+//!   N·m·s, what the snapshot holds) into those units once per step, and the
+//!   end of the step turns them back.
 //!
 //! # Breaking
 //! A breakable joint whose impulse over a step exceeds its limit is removed after

@@ -119,6 +119,14 @@ fn add(lane: &mut BodyLanes, k: usize, dv: i64) {
     }
 }
 
+/// Adds `dv` (|dv| ≤ 2³⁰) to lane `k` of a body, at the velocity wall.
+#[inline(always)]
+fn add32(lane: &mut BodyLanes, k: usize, dv: i32) {
+    if let Some(x) = lane.0.get_mut(k) {
+        *x = x.wrapping_add(dv).clamp(-V_WALL, V_WALL);
+    }
+}
+
 #[inline(always)]
 fn get(lane: &BodyLanes, k: usize) -> i32 {
     lane.0.get(k).copied().unwrap_or(0)
@@ -234,15 +242,23 @@ impl Side {
         wide::<FA>(get(l, W), self.iota)
     }
 
-    /// Applies `sign`·p (a linear impulse in velocity units) at the anchor.
+    /// Applies p (a linear impulse in velocity units) at the anchor, or −p
+    /// when `NEG` (body A).
     #[inline(always)]
-    fn apply_point(&self, l: &mut BodyLanes, p: [i32; 2], negate: bool) {
-        let dv = [i64::from(mul::<FU>(self.rho, p[0])), i64::from(mul::<FU>(self.rho, p[1]))];
+    fn apply_point<const NEG: bool>(&self, l: &mut BodyLanes, p: [i32; 2]) {
+        // |ρ·p| ≤ 2Λ = 2³⁰ and |v| ≤ the wall (2²⁷): the sum cannot wrap.
+        let dx = mul::<FU>(self.rho, p[0]);
+        let dy = mul::<FU>(self.rho, p[1]);
         let dw = wide::<FH>(self.g[0], p[1]) - wide::<FH>(self.g[1], p[0]);
-        let s = if negate { -1 } else { 1 };
-        add(l, VX, s * dv[0]);
-        add(l, VY, s * dv[1]);
-        add(l, W, s * dw);
+        if NEG {
+            add32(l, VX, dx.wrapping_neg());
+            add32(l, VY, dy.wrapping_neg());
+            add(l, W, -dw);
+        } else {
+            add32(l, VX, dx);
+            add32(l, VY, dy);
+            add(l, W, dw);
+        }
     }
 
     /// Applies `sign`·l (an angular impulse in relative-spin units).
@@ -328,6 +344,9 @@ pub(crate) struct JointMasses {
     pub(crate) world_point: bool,
     /// Whether the point constraint's 2×2 mass is needed (pivot, weld).
     pub(crate) point: bool,
+    /// Whether there are angular rows (a weld, a pivot with a motor or
+    /// limits); without, the angular impulses are neither used nor stored.
+    pub(crate) angular: bool,
     /// A pivot motor's target speed (rad/s) and largest impulse per sub-step
     /// (N·m·s; `None` unlimited).
     pub(crate) motor: Option<(Scalar, Option<Scalar>)>,
@@ -337,7 +356,7 @@ pub(crate) struct JointMasses {
 
 impl JointLanes {
     /// Once per step: ratios, softness and the accumulated impulses in lane
-    /// formats, and the pose of the first sub-step. `impulse` (N·s) and
+    /// formats, and the arms and position error of the first sub-step. `impulse` (N·s) and
     /// `angular` (N·m·s: angular, motor, limit) are the persistent impulses.
     pub(crate) fn prepare(
         m: &JointMasses,
@@ -352,12 +371,14 @@ impl JointLanes {
         let [ia, ib] = m.inv_inertia;
         let s = ma + mb;
         let k = ia + ib;
-        let (inv_s, inv_k) = (s.recip(), k.recip());
+        let rows = m.angular && k > ZERO;
+        let inv_s = s.recip();
+        let inv_k = if rows { k.recip() } else { ZERO };
         let (anchor_b, base) =
             if m.world_point { (Vector2::ZERO, m.anchors[1]) } else { (m.anchors[1], Vector2::ZERO) };
         let mut j = Self {
             linear: s > ZERO,
-            angular: k > ZERO,
+            angular: rows,
             side: [
                 Side::new(m.anchors[0], ma, ia, a, inv_s, inv_k),
                 Side::new(anchor_b, mb, ib, b, inv_s, inv_k),
@@ -380,11 +401,11 @@ impl JointLanes {
                 max.map_or(LAMBDA_MAX, |t| from_scalar(t * k, FV, lim).max(0)),
             ];
         }
+        j.pose(a, b);
         if m.point && j.linear {
             // M̂ = (K/s)⁻¹, from the arms at the start of the step: the
             // normalised K has eigenvalues ≥ 1, so M̂'s entries are in [−1, 1].
-            let ra = a.q.rotate(m.anchors[0]);
-            let rb = b.q.rotate(anchor_b);
+            let (ra, rb) = (j.side[0].arm(), j.side[1].arm());
             if let Some(mm) =
                 crate::constraint::point_mass_inverse(ma * inv_s, ia * inv_s, ra, mb * inv_s, ib * inv_s, rb)
             {
@@ -397,7 +418,9 @@ impl JointLanes {
         }
         let v = |x: Scalar| from_scalar(x, FV, i64::from(LAMBDA_MAX >> FV));
         j.lambda = [v(impulse.x * s), v(impulse.y * s)];
-        j.ang = [v(angular[0] * k), v(angular[1] * k), v(angular[2] * k)];
+        if rows {
+            j.ang = [v(angular[0] * k), v(angular[1] * k), v(angular[2] * k)];
+        }
         j
     }
 
@@ -428,8 +451,14 @@ impl JointLanes {
         let [sa, sb] = &mut self.side;
         sa.pose(a.q);
         sb.pose(b.q);
-        let d = ((b.p + self.base) - a.p) + (sb.arm() - sa.arm());
-        self.d = [from_scalar(d.x, FD, D_MAX), from_scalar(d.y, FD, D_MAX)];
+        // B − A in 64 bits: positions (Q32.32, |x| < 2³¹ each) differ by
+        // less than 2⁶³, and the arms (Q10.22) are exact in Q32.32.
+        let c = (b.p + self.base) - a.p;
+        let arm = |r: i32| i64::from(r) << (32 - FA);
+        let dx = c.x.to_bits().saturating_add(arm(sb.r[0]) - arm(sa.r[0]));
+        let dy = c.y.to_bits().saturating_add(arm(sb.r[1]) - arm(sa.r[1]));
+        let round = |x: i64| narrow((x >> (32 - FD)) + ((x >> (31 - FD)) & 1), D_MAX << FD);
+        self.d = [round(dx), round(dy)];
     }
 
     /// The rod's axis, length error and effective mass at the current pose
@@ -480,8 +509,8 @@ impl JointLanes {
         self.sum[0] += i64::from(p[0]);
         self.sum[1] += i64::from(p[1]);
         let [sa, sb] = &self.side;
-        sa.apply_point(la, p, true);
-        sb.apply_point(lb, p, false);
+        sa.apply_point::<true>(la, p);
+        sb.apply_point::<false>(lb, p);
     }
 
     /// One iteration of the point constraint (pivot, weld): the anchors

@@ -50,11 +50,11 @@
 //! how far the bodies moved and turned since the step began (linearised in the
 //! turn; see [`contact`]), so no collision detection runs inside the loop.
 //!
-//! **Numbers.** The contact kernels compute in their own 32-bit integer
-//! formats ([`lanes`]: velocities Q16.16, impulses in velocity units, mass
-//! ratios instead of masses), whose products are a 32×32→64 multiply and a
-//! shift; everything persistent, the joints and the once-per-step prepare and
-//! store stay in `Scalar`. Each body's `Scalar` velocity stays its own: the
+//! **Numbers.** The contact kernels and the joints' iterations compute in
+//! their own 32-bit integer formats ([`lanes`], [`joint_lanes`]: velocities
+//! Q16.16, impulses in velocity units, mass ratios instead of masses), whose
+//! products are a 32×32→64 multiply and a shift; everything persistent, the
+//! springs and the once-per-step prepare and store stay in `Scalar`. Each body's `Scalar` velocity stays its own: the
 //! kernels' changes are carried back as differences ([`body`]), so a body no
 //! contact touches moves exactly as before.
 //!
