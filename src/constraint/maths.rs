@@ -1,11 +1,9 @@
 //! The maths the built-in joints share in `Scalar`: where the anchors are in
-//! world space and applying an impulse (springs), the point-to-point
-//! constraint's mass (prepare),
-//! and the static stand-in body of a joint to a world point.
+//! world space and applying an impulse (springs), and the static stand-in body
+//! of a joint to a world point.
 
 use crate::body::Body;
-use crate::math::scalar::{Scalar, ZERO};
-use crate::math::{Matrix22, Vector2};
+use crate::math::Vector2;
 use crate::solver::SolverBody;
 
 use super::Joint;
@@ -17,30 +15,6 @@ pub(crate) fn anchors(j: &Joint, a: &SolverBody, b: &SolverBody) -> (Vector2, Ve
     let rb = b.q.rotate(j.def.anchor_b);
     let d = (b.p - a.p) + (rb - ra);
     (ra, rb, d)
-}
-
-/// The inverse of K = (mA + mB)·I + iA·[rA]ᵀ[rA] + iB·[rB]ᵀ[rB], the mass matrix
-/// of a point-to-point constraint with arms `ra`, `rb`, each entry divided
-/// exactly (the determinant is tiny for heavy bodies, where 1/det would lose
-/// the digits); `None` when singular.
-pub(crate) fn point_mass_inverse(
-    ma: Scalar,
-    ia: Scalar,
-    ra: Vector2,
-    mb: Scalar,
-    ib: Scalar,
-    rb: Vector2,
-) -> Option<Matrix22> {
-    let m = ma + mb;
-    let k11 = (m + (ia * (ra.y * ra.y))) + (ib * (rb.y * rb.y));
-    let k12 = -((ia * (ra.x * ra.y)) + (ib * (rb.x * rb.y)));
-    let k22 = (m + (ia * (ra.x * ra.x))) + (ib * (rb.x * rb.x));
-    let det = (k11 * k22) - (k12 * k12);
-    if det <= ZERO {
-        return None;
-    }
-    let off = (-k12).div_or_zero(det);
-    Some(Matrix22::new(k22.div_or_zero(det), off, off, k11.div_or_zero(det)))
 }
 
 /// Applies a linear impulse `p` at offsets `ra` (negated on A) and `rb`.

@@ -54,6 +54,6 @@ mod weld;
 pub(crate) use def::{validate, validate_params};
 pub use def::{JointDef, JointKind, MaxTorque, Motor};
 pub use joint::{Joint, JointHandle, JointMarker, JOINT_DAMPING_RATIO, JOINT_HERTZ};
-pub(crate) use maths::{ground, point_mass_inverse};
+pub(crate) use maths::ground;
 pub use user::{Constraint, ConstraintHandle, ConstraintMarker, MAX_USER_CONSTRAINTS};
 pub(crate) use user::{UserConstraint, UserConstraints};

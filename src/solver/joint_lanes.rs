@@ -41,7 +41,7 @@
 //! | v, ŵ (the body lanes) | Q16.16 | 1.5e-5 m/s | ±[`V_WALL`] | clamped after every joint update, as after every contact update |
 //! | λ̂, L̂ (accumulated, velocity units) | Q16.16 | 1.5e-5 m/s, rad/s | ±[`LAMBDA_MAX`] | clamped at every update (the contacts' crush limit) |
 //! | anchor rates, relative spin ω_B − ω_A, rate + bias | Q16.16 (64-bit sums) | 1.5e-5 | saturated to ±32,768 before they scale a row | \|v\| ≤ 2,048 m/s; \|ω\| ≤ the step's angular limit after each integration |
-//! | ρ, M̂ entries, μ̂, soft scales s_m, s_i, unit axis, rotation (c, s) | Q2.30 | 9.3e-10 | [0, 1] (axis, rotation ±1) | mass ratios and unit vectors (above) |
+//! | ρ, μ̂, soft scales s_m, s_i; M̂ entries; unit axis, rotation (c, s) | Q2.30 | 9.3e-10 | [0, 1]; ±1; ±1 | mass ratios (above), M̂ symmetric with eigenvalues in [0, 1], unit vectors |
 //! | κ | Q5.27 | 7.5e-9 | [0, 8] | r_b ≤ √8·ρ_g; clamped |
 //! | α | Q9.23 | 1.2e-7 m | [0, 128] | α ≤ r_b ≤ `MAX_BODY_RADIUS` |
 //! | local anchor, world arm r (m), 1/r_b | Q10.22 | 2.4e-7 | ±363 m, ≤ 256 1/m | anchors ≤ 256 m a component (`max_anchor`), \|q\| = 1; r_b ≥ 2⁻⁸ m in the solver |
@@ -162,6 +162,31 @@ impl LaneSoft {
             Bias::Off => (0, ONE_U, 0),
         }
     }
+}
+
+/// M̂ = (K/s)⁻¹ as (m11, m12, m22), from the normalised masses (`ma` = ρ_A,
+/// `ia` = (1/I_A)/s, …) and the arms. K/s is (ρ_A + ρ_B)·I plus the arms'
+/// terms (1/I)/s·[r]ᵀ[r], so its eigenvalues are ≥ ρ_A + ρ_B = 1, its
+/// determinant is ≥ 1 and one reciprocal serves the three entries. `None`
+/// when singular (only when the entries saturate).
+fn point_mass(
+    ma: Scalar,
+    ia: Scalar,
+    ra: Vector2,
+    mb: Scalar,
+    ib: Scalar,
+    rb: Vector2,
+) -> Option<[Scalar; 3]> {
+    let m = ma + mb;
+    let k11 = (m + (ia * (ra.y * ra.y))) + (ib * (rb.y * rb.y));
+    let k12 = -((ia * (ra.x * ra.y)) + (ib * (rb.x * rb.y)));
+    let k22 = (m + (ia * (ra.x * ra.x))) + (ib * (rb.x * rb.x));
+    let det = (k11 * k22) - (k12 * k12);
+    if det <= ZERO {
+        return None;
+    }
+    let inv = det.recip();
+    Some([k22 * inv, -(k12 * inv), k11 * inv])
 }
 
 /// One body's side of a joint: its ratios for the step and its arm at the
@@ -290,7 +315,7 @@ struct Axis {
 /// [`Joint`](crate::constraint::Joint); not part of the snapshot: prepare
 /// rebuilds it from the persistent impulses every step).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct JointLanes {
+pub(crate) struct JointLanes {
     /// The linear rows run (s > 0).
     linear: bool,
     /// The angular rows run (1/I_A + 1/I_B > 0).
@@ -406,14 +431,8 @@ impl JointLanes {
             // M̂ = (K/s)⁻¹, from the arms at the start of the step: the
             // normalised K has eigenvalues ≥ 1, so M̂'s entries are in [−1, 1].
             let (ra, rb) = (j.side[0].arm(), j.side[1].arm());
-            if let Some(mm) =
-                crate::constraint::point_mass_inverse(ma * inv_s, ia * inv_s, ra, mb * inv_s, ib * inv_s, rb)
-            {
-                j.m = [
-                    from_scalar(mm.col1.x, FU, 1),
-                    from_scalar(mm.col2.x, FU, 1),
-                    from_scalar(mm.col2.y, FU, 1),
-                ];
+            if let Some(mm) = point_mass(ma * inv_s, ia * inv_s, ra, mb * inv_s, ib * inv_s, rb) {
+                j.m = mm.map(|x| from_scalar(x, FU, 1));
             }
         }
         let v = |x: Scalar| from_scalar(x, FV, i64::from(LAMBDA_MAX >> FV));

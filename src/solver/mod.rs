@@ -287,7 +287,8 @@ fn prepare_joints(
     let sground = SolverBody::EMPTY;
     for (_, j) in joints.iter_mut() {
         let b = j.def.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
-        let sb = j.def.body_b.and_then(|hb| sbodies.get(hb.index() as usize)).unwrap_or(&sground);
+        let sb = j.def.body_b.filter(|&hb| bodies.get(hb).is_some());
+        let sb = sb.and_then(|hb| sbodies.get(hb.index() as usize)).unwrap_or(&sground);
         match (bodies.get(j.def.body_a), sbodies.get(j.def.body_a.index() as usize)) {
             (Some(a), Some(sa)) => j.prepare(a, b, sa, sb, ctx.joint_softness, ctx.h, ctx.inv_h),
             _ => j.deactivate(),
