@@ -12,7 +12,7 @@ use managed::ManagedSlice;
 
 use crate::hook::Hook;
 
-use crate::arbiter::{mix_friction, mix_restitution, Arbiter, ArbiterState, ArbiterStore};
+use crate::arbiter::{mix_friction, mix_restitution, Arbiter, ArbiterState, ArbiterStore, ContactPoint};
 use crate::arena::Arena;
 use crate::body::{Body, BodyHandle, BodyType, Shape};
 use crate::collide::{collide_circles, collide_polygon_circle, collide_polygons, Manifold};
@@ -383,23 +383,38 @@ fn lifecycle(
 }
 
 /// Copies a manifold into the arbiter, carrying the accumulated impulses of
-/// points whose feature id persists (warm starting).
+/// points whose feature id persists (warm starting). Written in place: the
+/// impulses carried over are read before any point is overwritten, and each
+/// point is then written whole (a point past the manifold's count is cleared).
 fn set_manifold(arb: &mut Arbiter, m: &Manifold) {
-    let old = arb.points;
+    let src = m.points();
     let old_count = usize::from(arb.count);
-    let mut points = Arbiter::EMPTY.points;
-    for (dst, src) in points.iter_mut().zip(m.points()) {
-        dst.point = src.point;
-        dst.separation = src.separation;
-        dst.id = src.id;
-        dst.anchor_a = src.anchor_a;
-        dst.anchor_b = src.anchor_b;
-        if let Some(o) = old.iter().take(old_count).find(|o| o.id == src.id) {
-            dst.normal_impulse = o.normal_impulse;
-            dst.tangent_impulse = o.tangent_impulse;
-        }
+    let carried = |k: usize| {
+        let s = src.get(k)?;
+        let o = arb.points.iter().take(old_count).find(|o| o.id == s.id)?;
+        Some((o.normal_impulse, o.tangent_impulse))
+    };
+    let carried = [carried(0), carried(1)];
+    let empty = Arbiter::EMPTY.points[0];
+    for (k, (dst, carry)) in arb.points.iter_mut().zip(carried).enumerate() {
+        *dst = match src.get(k) {
+            Some(s) => {
+                let (normal_impulse, tangent_impulse) =
+                    carry.unwrap_or((empty.normal_impulse, empty.tangent_impulse));
+                ContactPoint {
+                    point: s.point,
+                    separation: s.separation,
+                    id: s.id,
+                    normal_impulse,
+                    tangent_impulse,
+                    anchor_a: s.anchor_a,
+                    anchor_b: s.anchor_b,
+                    ..empty
+                }
+            }
+            None => empty,
+        };
     }
-    arb.points = points;
     arb.count = m.count.min(2) as u8;
     arb.normal = m.normal;
 }

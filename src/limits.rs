@@ -177,27 +177,28 @@ pub(crate) fn enforce(
 ) -> u32 {
     let (vmax, wmax) = (ctx.max_linear_speed, ctx.max_angular_speed);
     let mut left = 0u32;
+    // |v|² is compared with vmax² (it fits: each component is clamped to at
+    // most MAX_LINEAR_SPEED_LIMIT, 2048, first).
+    let vmax2 = vmax * vmax;
+    // One pass: each body's clamps, freeze and box depend on that body alone.
     for (_, b) in bodies.iter_mut() {
-        if !b.moved_by_step() {
+        if b.body_type == BodyType::Static {
             continue;
         }
-        // Components are clamped first so the length cannot saturate.
-        let v = b.linear_velocity;
-        let v = Vector2::new(v.x.clamp(-vmax, vmax), v.y.clamp(-vmax, vmax));
-        // |v|² fits: each component is at most MAX_LINEAR_SPEED_LIMIT (2048).
-        b.linear_velocity = if v.length_squared() > vmax * vmax { v.normalize() * vmax } else { v };
-        b.angular_velocity = b.angular_velocity.clamp(-wmax, wmax);
-        if !ctx.bounds.contains(b.position) {
-            b.out_of_bounds = true;
-            b.linear_velocity = Vector2::ZERO;
-            b.angular_velocity = ZERO;
-            left = left.saturating_add(1);
+        if !b.out_of_bounds {
+            // Components are clamped first so the length cannot saturate.
+            let v = b.linear_velocity;
+            let v = Vector2::new(v.x.clamp(-vmax, vmax), v.y.clamp(-vmax, vmax));
+            b.linear_velocity = if v.length_squared() > vmax2 { v.normalize() * vmax } else { v };
+            b.angular_velocity = b.angular_velocity.clamp(-wmax, wmax);
+            if !ctx.bounds.contains(b.position) {
+                b.out_of_bounds = true;
+                b.linear_velocity = Vector2::ZERO;
+                b.angular_velocity = ZERO;
+                left = left.saturating_add(1);
+            }
         }
-    }
-    for (_, b) in bodies.iter_mut() {
-        if b.body_type != BodyType::Static {
-            b.aabb = compute_aabb(b, paths);
-        }
+        b.aabb = compute_aabb(b, paths);
     }
     left
 }

@@ -180,8 +180,8 @@ fn transform_vertices(poly: &PolygonPath, xf: Transform) -> [Vector2; MAX_POLYGO
 /// [`PolygonPath::rectangle`] makes them) takes a straight-line full scan: each
 /// distance is one subtraction, and without early exits there is nothing to
 /// mispredict. Any other polygon is scanned face by face from the face looking
-/// towards `towards` (the other polygon's origin in `poly`'s frame), which is
-/// usually the answer: a face replaces the best only when its deepest vertex is
+/// towards `towards` (the other polygon's origin in `poly`'s frame, judged by
+/// a coarse integer dot product), which is usually the answer: a face replaces the best only when its deepest vertex is
 /// shallower (or as shallow with a lower index), so each later face's scan
 /// stops at its first vertex at or below the best. The result is the same for
 /// every start and on both paths (a test holds both to the definition).
@@ -220,9 +220,19 @@ fn max_separation(poly: &PolygonPath, other: &[Vector2], towards: Vector2) -> Op
         }
         return Some(best);
     }
-    let mut start: Option<(usize, Scalar)> = None;
-    for (i, d) in dirs.iter().enumerate() {
-        let along = d.dot(towards);
+    // The start changes only how soon the scans stop, never the result, so
+    // it is picked by a coarse dot product in plain integer arithmetic: the
+    // normal's components (|n| ≤ 1, at most 2^32 in bits) to 16 fractional
+    // bits, `towards` to 12 (at most 2^43 in bits): each product is below
+    // 2^59, the sum below 2^60, so nothing wraps.
+    let coarse = |n: &Vector2| {
+        let (nx, ny) = (n.x.to_bits() >> 16, n.y.to_bits() >> 16);
+        let (tx, ty) = (towards.x.to_bits() >> 20, towards.y.to_bits() >> 20);
+        nx.wrapping_mul(tx).wrapping_add(ny.wrapping_mul(ty))
+    };
+    let mut start: Option<(usize, i64)> = None;
+    for (i, n) in normals.iter().take(count).enumerate() {
+        let along = coarse(n);
         if start.is_none_or(|(_, a)| along > a) {
             start = Some((i, along));
         }

@@ -72,10 +72,12 @@ fn check_gravity(g: Vector2) -> Result<(), Error> {
 }
 
 impl ForceGenerator for GravityForceGenerator {
+    #[inline]
     fn applies_to(&self, handle: BodyHandle, body: &Body) -> bool {
         self.targets.contains(handle, body)
     }
 
+    #[inline]
     fn apply(&mut self, _: BodyHandle, body: &mut Body, dt: Scalar) {
         body.add_linear_velocity(self.gravity * dt);
     }

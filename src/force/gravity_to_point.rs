@@ -97,10 +97,12 @@ fn check_acceleration(a: Scalar) -> Result<(), Error> {
 }
 
 impl ForceGenerator for GravityToPointForceGenerator {
+    #[inline]
     fn applies_to(&self, handle: BodyHandle, body: &Body) -> bool {
         self.targets.contains(handle, body)
     }
 
+    #[inline]
     fn apply(&mut self, _: BodyHandle, body: &mut Body, dt: Scalar) {
         // `normalize` scales before squaring, so any distance within the world is safe.
         let dir = (self.point - body.position()).normalize();

@@ -71,10 +71,12 @@ fn check_force(f: Vector2) -> Result<(), Error> {
 }
 
 impl ForceGenerator for LinearForceGenerator {
+    #[inline]
     fn applies_to(&self, handle: BodyHandle, body: &Body) -> bool {
         self.targets.contains(handle, body)
     }
 
+    #[inline]
     fn apply(&mut self, _: BodyHandle, body: &mut Body, dt: Scalar) {
         body.apply_force(self.force, dt);
     }

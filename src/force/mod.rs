@@ -24,7 +24,7 @@ use crate::arena::{Arena, Handle, Slot};
 use crate::step::StepContext;
 
 use crate::body::{Body, BodyHandle};
-use crate::math::Scalar;
+use crate::math::{Scalar, Vector2};
 
 /// Most bodies a built-in generator's explicit target list can hold.
 pub const MAX_TARGETS: usize = 32;
@@ -83,6 +83,7 @@ impl Targets {
     }
 
     /// True when the body is targeted.
+    #[inline]
     #[must_use]
     pub fn contains(&self, handle: BodyHandle, body: &Body) -> bool {
         match self {
@@ -114,6 +115,20 @@ pub(crate) type Generators<'a> =
 /// into a velocity change per body (`force_dv`, `force_dw`), restoring the
 /// velocities, so that the solver spreads it evenly over the sub-steps.
 pub(crate) fn apply(ctx: &StepContext, bodies: &mut Arena<'_, Body>, generators: &mut Generators<'_>) {
+    // One built-in generator (the common case: gravity) runs in a single pass.
+    // With one generator, each body's velocity change depends on that body
+    // alone and the generator is called in the same order with the same
+    // arguments, and a built-in cannot panic half way; bodies it skips get
+    // the zero change `v − v`.
+    if generators.len() <= 1 {
+        match generators.iter_mut().next().map(|(_, g)| g) {
+            None => return single_pass(&mut NoForce, bodies, ctx.dt),
+            Some(Generator::Linear(g)) => return single_pass(g, bodies, ctx.dt),
+            Some(Generator::Gravity(g)) => return single_pass(g, bodies, ctx.dt),
+            Some(Generator::GravityToPoint(g)) => return single_pass(g, bodies, ctx.dt),
+            Some(Generator::Custom(_)) => {}
+        }
+    }
     for (_, b) in bodies.iter_mut() {
         b.force_dv = b.linear_velocity;
         b.force_dw = b.angular_velocity;
@@ -128,6 +143,38 @@ pub(crate) fn apply(ctx: &StepContext, bodies: &mut Arena<'_, Body>, generators:
         b.linear_velocity = v0;
         b.angular_velocity = w0;
     }
+}
+
+/// The forces stage for a single built-in generator `g`: what [`apply`] does,
+/// body by body.
+#[inline]
+fn single_pass<G: ForceGenerator>(g: &mut G, bodies: &mut Arena<'_, Body>, dt: Scalar) {
+    for (h, b) in bodies.iter_mut() {
+        if b.is_dynamic() && !b.out_of_bounds && g.applies_to(h, b) {
+            let (v0, w0) = (b.linear_velocity, b.angular_velocity);
+            g.apply(h, b, dt);
+            b.force_dv = b.linear_velocity - v0;
+            b.force_dw = b.angular_velocity - w0;
+            b.linear_velocity = v0;
+            b.angular_velocity = w0;
+        } else {
+            b.force_dv = Vector2::ZERO;
+            b.force_dw = Scalar::ZERO;
+        }
+    }
+}
+
+/// No generator: every body's velocity change is zero.
+struct NoForce;
+
+impl ForceGenerator for NoForce {
+    #[inline]
+    fn applies_to(&self, _: BodyHandle, _: &Body) -> bool {
+        false
+    }
+
+    #[inline]
+    fn apply(&mut self, _: BodyHandle, _: &mut Body, _: Scalar) {}
 }
 
 /// A force generator stored in a world: one of the built-ins, or a game's own.
@@ -201,13 +248,26 @@ impl<'a> Generator<'a> {
         }
     }
 
-    /// Runs the generator over every candidate body for one step.
+    /// Runs the generator over every candidate body for one step. The
+    /// built-ins are called directly (their `applies_to` and `apply` inlined
+    /// into the loop), a game's generator through its trait object.
     pub(crate) fn run(&mut self, bodies: &mut Arena<'_, Body>, dt: Scalar) {
-        let g = self.as_dyn_mut();
-        for (h, b) in bodies.iter_mut() {
-            if b.is_dynamic() && !b.out_of_bounds && g.applies_to(h, b) {
-                g.apply(h, b, dt);
-            }
+        match self {
+            Self::Linear(g) => run_over(g, bodies, dt),
+            Self::Gravity(g) => run_over(g, bodies, dt),
+            Self::GravityToPoint(g) => run_over(g, bodies, dt),
+            Self::Custom(g) => run_over(&mut **g, bodies, dt),
+        }
+    }
+}
+
+/// Calls `g` on every dynamic body inside the bounds that it accepts, in slot
+/// order.
+#[inline]
+fn run_over<G: ForceGenerator + ?Sized>(g: &mut G, bodies: &mut Arena<'_, Body>, dt: Scalar) {
+    for (h, b) in bodies.iter_mut() {
+        if b.is_dynamic() && !b.out_of_bounds && g.applies_to(h, b) {
+            g.apply(h, b, dt);
         }
     }
 }

@@ -163,6 +163,7 @@ impl Transform {
     }
 
     /// The transform of frame `b` expressed in frame `self`: `self⁻¹ ∘ b`.
+    #[inline]
     #[must_use]
     pub fn inv_mul(self, b: Self) -> Self {
         Self { p: self.q.inv_rotate(b.p - self.p), q: self.q.inv_mul(b.q) }

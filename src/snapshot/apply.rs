@@ -11,7 +11,7 @@ use crate::arena::NO_SLOT;
 use crate::body::compute_aabb;
 use crate::body::{Body, BodyHandle, Shape};
 use crate::geometry::MassData;
-use crate::math::scalar::ZERO;
+use crate::math::scalar::{Scalar, ZERO};
 use crate::world::World;
 
 fn slot_link(link: u32) -> u32 {
@@ -27,11 +27,12 @@ fn slot_link(link: u32) -> u32 {
 pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
     w.step_count = l.step_count;
     // Bodies.
+    let mut recips = Recips::new();
     for i in 0..l.bodies.used {
         let Ok(r) = l.body(i) else { continue };
         if r.live() {
             let Ok(p) = l.props(r.index()) else { continue };
-            let mut body = body_from(&p, &r);
+            let mut body = body_from(&p, &r, &mut recips);
             body.radius = match p.shape {
                 Shape::Circle { radius } => radius,
                 Shape::Polygon(h) => w.paths.get(h).map_or(ZERO, |path| path.radius()),
@@ -86,7 +87,37 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
     w.post_step.clear();
 }
 
-fn body_from(p: &Props, r: &BodyRecord) -> Body {
+/// `x.recip()`, remembered for a few recent values: the bodies of one shape
+/// share their mass and inertia, and a division costs as much as dozens of
+/// products. A memo of a pure function: the same bits as dividing each time.
+struct Recips {
+    args: [Scalar; 8],
+    recips: [Scalar; 8],
+}
+
+impl Recips {
+    /// Empty: every entry is 0, whose reciprocal is 0 by `recip`'s convention.
+    fn new() -> Self {
+        Self { args: [ZERO; 8], recips: [ZERO; 8] }
+    }
+
+    fn recip(&mut self, x: Scalar) -> Scalar {
+        // Fibonacci hashing of the bits to one of the eight entries.
+        let k = ((x.to_bits() as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 61) as usize;
+        match (self.args.get_mut(k), self.recips.get_mut(k)) {
+            (Some(a), Some(r)) => {
+                if *a != x {
+                    *a = x;
+                    *r = x.recip();
+                }
+                *r
+            }
+            _ => x.recip(),
+        }
+    }
+}
+
+fn body_from(p: &Props, r: &BodyRecord, recips: &mut Recips) -> Body {
     let mut b = Body::ground();
     b.position = r.position;
     b.rotation = r.rotation;
@@ -96,9 +127,9 @@ fn body_from(p: &Props, r: &BodyRecord) -> Body {
     b.body_type = p.body_type;
     b.mass = MassData {
         mass: p.mass,
-        inv_mass: p.mass.recip(),
+        inv_mass: recips.recip(p.mass),
         inertia: p.inertia,
-        inv_inertia: p.inertia.recip(),
+        inv_inertia: recips.recip(p.inertia),
     };
     b.friction = p.friction;
     b.restitution = p.restitution;

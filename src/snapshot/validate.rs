@@ -85,9 +85,12 @@ fn check_motion(r: &BodyRecord) -> Result<(), Error> {
     if p.x.abs() > far || p.y.abs() > far {
         return Err(invalid("position out of range"));
     }
+    // A constant: `lit` in an expression would parse the string at run time,
+    // once per body.
+    const UNIT_TOLERANCE: Scalar = Scalar::lit("0.000001");
     let q = r.rotation;
     let norm = (q.c * q.c) + (q.s * q.s);
-    if (norm - scalar::ONE).abs() > Scalar::lit("0.000001") {
+    if (norm - scalar::ONE).abs() > UNIT_TOLERANCE {
         return Err(invalid("rotation is not a unit rotation"));
     }
     // Speeds are not limited here: a game may set any velocity between steps,

@@ -155,7 +155,9 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
     for (_, b) in w.bodies.iter() {
         let p = Props::of(b);
         if last != Some(p) {
-            write_props(s, &p);
+            let mut rec = Record::<PROPS_RECORD>::default();
+            write_props(&mut rec, &p);
+            s.put(&rec.bytes);
             last = Some(p);
         }
     }
@@ -182,11 +184,14 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
                 }
                 last = Some(p);
                 let flags = if b.out_of_bounds { LIVE | OUT_OF_BOUNDS } else { LIVE };
-                s.u32(flags | (index & LINK_MASK));
-                s.vector(b.position);
-                s.rot(b.rotation);
-                s.vector(b.linear_velocity);
-                s.scalar(b.angular_velocity);
+                // The record after its generation.
+                let mut rec = Record::<{ BODY_RECORD - 4 }>::default();
+                rec.u32(flags | (index & LINK_MASK));
+                rec.vector(b.position);
+                rec.rot(b.rotation);
+                rec.vector(b.linear_velocity);
+                rec.scalar(b.angular_velocity);
+                s.put(&rec.bytes);
             }
             None => {
                 s.u32(link(next_free));
@@ -232,23 +237,25 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
     let live = w.arbiters.live();
     s.u32(live.len() as u32);
     for a in live {
+        let mut rec = Record::<ARBITER_RECORD>::default();
         for h in [a.body_a, a.body_b] {
-            s.u32(h.index());
-            s.u32(h.generation());
+            rec.u32(h.index());
+            rec.u32(h.generation());
         }
-        s.u8(a.state as u8);
-        s.u32(a.steps_separated);
-        s.u8(a.count);
+        rec.u8(a.state as u8);
+        rec.u32(a.steps_separated);
+        rec.u8(a.count);
         for (k, p) in a.points.iter().enumerate() {
             // Unused point slots are written as zeros so equal states encode equally.
             if k < usize::from(a.count) {
-                s.u16(p.id);
-                s.scalar(p.normal_impulse);
-                s.scalar(p.tangent_impulse);
+                rec.u16(p.id);
+                rec.scalar(p.normal_impulse);
+                rec.scalar(p.tangent_impulse);
             } else {
-                s.zeros(18);
+                rec.zeros(18);
             }
         }
+        s.put(&rec.bytes);
     }
 
     s.part(Part::Allocators);
@@ -258,7 +265,7 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
     s.u32(len);
     for i in 0..used {
         let (generation, next_free) = w.joints.slot_meta(i).unwrap_or((0, NO_SLOT));
-        let mut rec = Record::default();
+        let mut rec = Record::<JOINT_RECORD>::default();
         rec.u32(generation);
         rec.u32(link(next_free));
         match w.joints.get_at(i) {
@@ -297,6 +304,7 @@ pub(super) fn write_def(s: &mut impl Sink, d: &WorldDef) {
     s.u32(d.arbiter_persistence);
 }
 
+#[inline]
 fn write_props(s: &mut impl Sink, p: &Props) {
     match p.shape {
         Shape::Circle { radius } => {
@@ -337,19 +345,25 @@ fn write_targets(s: &mut impl Sink, t: &Targets) {
     }
 }
 
-/// A fixed-size joint record being assembled (zero-padded to `JOINT_RECORD`).
-struct Record {
-    bytes: [u8; JOINT_RECORD],
+/// A fixed-size record of `N` bytes being assembled (zero-padded), then
+/// handed to the sink in one piece: its fields land at constant offsets of a
+/// local array (no bounds checks once inlined), and the sink sees one call
+/// per record instead of one per field. Joints (`JOINT_RECORD`), and the
+/// bodies, properties and arbiters, whose records are always full.
+struct Record<const N: usize> {
+    bytes: [u8; N],
     pos: usize,
 }
 
-impl Default for Record {
+impl<const N: usize> Default for Record<N> {
+    #[inline]
     fn default() -> Self {
-        Self { bytes: [0; JOINT_RECORD], pos: 0 }
+        Self { bytes: [0; N], pos: 0 }
     }
 }
 
-impl Sink for Record {
+impl<const N: usize> Sink for Record<N> {
+    #[inline]
     fn put(&mut self, b: &[u8]) {
         let end = self.pos.saturating_add(b.len());
         if let Some(dst) = self.bytes.get_mut(self.pos..end) {

@@ -14,7 +14,11 @@
 //! all restored by a snapshot or derived from it, so nothing is added to it.
 //!
 //! The lanes are laid out in run order, the overflow first and then colours
-//! 0 to 22, each colour's constraints in key order; colours are not padded, so
+//! 0 to 22, the overflow's constraints in key order and each colour's
+//! two-point manifolds before its one-point ones, each in key order (a
+//! colour's lanes are independent, so this order changes no result; it keeps
+//! most blocks all of one kind, and a block of one-point manifolds skips the
+//! kernels' second-point work); colours are not padded, so
 //! a block may hold the end of one colour and the start of the next, and is
 //! then solved in each with the other's lanes masked.
 
@@ -104,6 +108,11 @@ pub(crate) fn build(
     scales: (Scalar, Scalar),
 ) {
     let mut counts = [0u32; RUNS];
+    // Two-point manifolds per run: each run lays them out first, so that the
+    // kernels' second-point work (skipped for blocks of one-point manifolds)
+    // and their 2×2 blocks meet few mixed blocks. The lanes of a colour are
+    // independent, so their order within it changes no result.
+    let mut twos = [0u32; RUNS];
     for (k, arb) in arbiters.iter_mut().enumerate() {
         let Some(scratch) = solver.scratch.get_mut(k) else {
             arb.solve = false;
@@ -146,6 +155,9 @@ pub(crate) fn build(
         if let Some(n) = counts.get_mut(run_of(c)) {
             *n += 1;
         }
+        if let (Some(n), true) = (twos.get_mut(run_of(c)), arb.count >= 2) {
+            *n += 1;
+        }
     }
     let capacity = (solver.constraints.len() / LANES * LANES) as u32;
     // Laid out in the order a forward sweep visits the runs.
@@ -158,13 +170,21 @@ pub(crate) fn build(
     }
     solver.count = start as usize;
     solver.overflow = counts[0];
-    let mut cursor = solver.ranges.map(|r| r.0);
+    // Each run's two-point manifolds from its start, the others after them,
+    // each in key order.
+    let mut cursor = [solver.ranges.map(|r| r.0), solver.ranges.map(|r| r.0)];
+    for (one, (&n, &(s, e))) in cursor[1].iter_mut().zip(twos.iter().zip(solver.ranges.iter())) {
+        *one = s.saturating_add(n).min(e);
+    }
+    let ends = [solver.ranges.map(|r| r.1), solver.ranges.map(|r| r.1)];
     for (arb, scratch) in arbiters.iter().zip(solver.scratch.iter_mut()) {
         if scratch.colour == NONE {
             continue;
         }
         let run = run_of(scratch.colour);
-        let (Some(at), Some(&(_, end))) = (cursor.get_mut(run), solver.ranges.get(run)) else { continue };
+        // The overflow is solved one at a time: it keeps key order.
+        let kind = usize::from(arb.count < 2 && run != 0);
+        let (Some(at), Some(&end)) = (cursor[kind].get_mut(run), ends[kind].get(run)) else { continue };
         if *at >= end {
             scratch.colour = NONE;
             continue;

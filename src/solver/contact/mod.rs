@@ -166,5 +166,5 @@ pub(crate) const B_DYNAMIC: i32 = 2;
 pub(crate) const TWO_POINTS: i32 = 4;
 /// Flag: one body has infinite mass (the static softness applies).
 pub(crate) const STATIC_PAIR: i32 = 8;
-/// Flag: the two points may be solved as a block.
+/// Flag: the two points may be solved as a block (set only with [`TWO_POINTS`]).
 pub(crate) const HAS_BLOCK: i32 = 16;

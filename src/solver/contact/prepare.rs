@@ -30,17 +30,20 @@ struct Side {
 }
 
 impl Side {
+    #[inline(always)]
     fn new(b: &Body, sb: &SolverBody) -> Self {
         let (m, i) = inverse_mass(b);
         Self { m, i, radius: sb.radius, inv_radius: sb.inv_radius }
     }
 
     /// The arm (r×d) in body radii, clamped to ±[`ARM_MAX`].
+    #[inline(always)]
     fn arm(&self, rd: Scalar) -> i32 {
         lanes::from_scalar(rd * self.inv_radius, FR, ARM_MAX)
     }
 
     /// The rim ratio γ̂ = (r×d)·r_b·(1/I)·m_eff, clamped to ±[`GAMMA_MAX`].
+    #[inline(always)]
     fn gamma(&self, rd: Scalar, m_eff: Scalar) -> i32 {
         let g = (self.i * rd * m_eff * self.radius).clamp(-GAMMA_MAX, GAMMA_MAX);
         lanes::from_scalar(g, FU, 2)
@@ -56,6 +59,7 @@ fn put(blk: &mut Block, fi: usize, l: usize, x: i32) {
 }
 
 /// 1/(1/m_A + 1/m_B + (r_A×d)²/I_A + (r_B×d)²/I_B) for arms (r×d) `ra`, `rb`.
+#[inline(always)]
 fn k(a: &Side, b: &Side, ra: Scalar, rb: Scalar) -> Scalar {
     a.m + b.m + a.i * (ra * ra) + b.i * (rb * rb)
 }
