@@ -24,6 +24,12 @@
 //!   N·m·s, what the snapshot holds) into those units once per step, and the
 //!   end of the step turns them back.
 //!
+//! The sub-steps work on a row per joint in a dense scratch array of the
+//! solver (`row.rs`), built at prepare in joint-slot order: the joints
+//! themselves are read once at prepare and written once at the end of the
+//! step, which keeps the twelve joint passes of a step off the larger joint
+//! slots.
+//!
 //! # Breaking
 //! A breakable joint whose impulse over a step exceeds its limit is removed after
 //! that step and handed, with its handle, to the world's break callback
@@ -37,8 +43,9 @@
 
 //!
 //! # Files
-//! [`JointDef`] and its kinds are in `def.rs`, the runtime [`Joint`] and its
-//! dispatch in `joint.rs`, the maths the joints share in `maths.rs`, one file
+//! [`JointDef`] and its kinds are in `def.rs`, the runtime [`Joint`] in
+//! `joint.rs`, its row in the solver's dense joint array and the dispatch of
+//! each solver stage in `row.rs`, the maths the joints share in `maths.rs`, one file
 //! per kind (`spring.rs`, `rod.rs`, `pivot.rs`, `weld.rs`), and the game's
 //! [`Constraint`] in `user.rs`.
 
@@ -47,6 +54,7 @@ mod joint;
 mod maths;
 mod pivot;
 mod rod;
+mod row;
 mod spring;
 mod user;
 mod weld;
@@ -55,5 +63,6 @@ pub(crate) use def::{validate, validate_params};
 pub use def::{JointDef, JointKind, MaxTorque, Motor};
 pub use joint::{Joint, JointHandle, JointMarker, JOINT_DAMPING_RATIO, JOINT_HERTZ};
 pub(crate) use maths::ground;
+pub(crate) use row::JointRow;
 pub use user::{Constraint, ConstraintHandle, ConstraintMarker, MAX_USER_CONSTRAINTS};
 pub(crate) use user::{UserConstraint, UserConstraints};

@@ -4,34 +4,35 @@
 //! ([`JointLanes`](crate::solver::JointLanes)); the relative angle the limits
 //! need is measured here, once per sub-step, with the pose.
 
-use super::Joint;
 use crate::math::scalar::Scalar;
-use crate::solver::{Bias, BodyLanes, SolverBody};
+use crate::math::Rot;
+use crate::solver::{Bias, BodyLanes, JointLanes, SolverBody};
 
-/// The relative angle θB − θA measured from the angle at creation, in (−π, π].
-pub(super) fn relative_angle(j: &Joint, a: &SolverBody, b: &SolverBody) -> Scalar {
-    j.reference.inv_mul(a.q.inv_mul(b.q)).angle()
+/// The relative angle θB − θA measured from `reference` (the relative angle at
+/// creation), in (−π, π].
+pub(super) fn relative_angle(reference: Rot, a: &SolverBody, b: &SolverBody) -> Scalar {
+    reference.inv_mul(a.q.inv_mul(b.q)).angle()
 }
 
 /// One iteration: motor, limits, then the point. For a joint to a fixed world
-/// point the limits and the motor act on the body's own angle and spin (θA,
-/// ωA), which is what a game means by "the wheel turns at 5 rad/s", rather
-/// than on θB − θA with the world as B.
+/// point (`world_point`) the limits and the motor act on the body's own angle
+/// and spin (θA, ωA), which is what a game means by "the wheel turns at 5
+/// rad/s", rather than on θB − θA with the world as B.
 pub(super) fn solve(
-    j: &mut Joint,
+    j: &mut JointLanes,
     la: &mut BodyLanes,
     lb: &mut BodyLanes,
     limits: bool,
     motor: bool,
+    world_point: bool,
     bias: Bias,
 ) {
-    let world_point = j.def.body_b.is_none();
     if motor {
         // Drive the relative spin towards the target; no position error, no bias.
-        j.lanes.solve_motor(la, lb, world_point);
+        j.solve_motor(la, lb, world_point);
     }
     if limits {
-        j.lanes.solve_limits(la, lb, world_point, bias);
+        j.solve_limits(la, lb, world_point, bias);
     }
-    j.lanes.solve_point(la, lb, bias);
+    j.solve_point(la, lb, bias);
 }

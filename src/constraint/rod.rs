@@ -4,8 +4,7 @@
 //! with the pose ([`JointLanes::axis`](crate::solver::JointLanes)), with the
 //! effective mass along it; the iterations run in the solver's 32-bit formats.
 
-use super::Joint;
-use crate::solver::{Bias, BodyLanes};
+use crate::solver::{Bias, BodyLanes, JointLanes};
 
 /// Which distance a [`solve`] keeps.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -19,6 +18,12 @@ pub(super) enum Distance {
 /// One iteration of the distance constraint `|d| = length` (rod) or
 /// `|d| ≤ length` (rope: pulls only, and only when taut or about to be within
 /// this sub-step).
-pub(super) fn solve(j: &mut Joint, la: &mut BodyLanes, lb: &mut BodyLanes, distance: Distance, bias: Bias) {
-    j.lanes.solve_axial(la, lb, distance == Distance::AtMost, bias);
+pub(super) fn solve(
+    j: &mut JointLanes,
+    la: &mut BodyLanes,
+    lb: &mut BodyLanes,
+    distance: Distance,
+    bias: Bias,
+) {
+    j.solve_axial(la, lb, distance == Distance::AtMost, bias);
 }

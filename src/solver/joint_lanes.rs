@@ -311,9 +311,9 @@ struct Axis {
     gamma: [i32; 2],
 }
 
-/// A joint's state in lane formats for one step (solver scratch inside
-/// [`Joint`](crate::constraint::Joint); not part of the snapshot: prepare
-/// rebuilds it from the persistent impulses every step).
+/// A joint's state in lane formats for one step, held in its row of the
+/// solver's dense joint array (scratch, not part of the snapshot: prepare
+/// rebuilds it from the joint's persistent impulses every step).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct JointLanes {
     /// The linear rows run (s > 0).
@@ -443,7 +443,7 @@ impl JointLanes {
         j
     }
 
-    /// An inactive record (a joint whose bodies are gone this step).
+    /// A record with no rows to run: what prepare starts from.
     pub(crate) const INACTIVE: Self = Self {
         linear: false,
         angular: false,
