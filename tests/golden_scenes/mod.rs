@@ -26,7 +26,7 @@ pub const GOLDEN_CORE_SCENE: u64 = 0xb795_399a_d952_542d;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_PYRAMID: u64 = 0x4824_b2cf_8384_a768;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_MIXED: u64 = 0xdeba_e3de_aaee_491c;
+pub const GOLDEN_MIXED: u64 = 0xc60a_ebf7_5292_afd9;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_LONG: u64 = 0xddea_d3f5_a65b_f24a;
 
