@@ -80,7 +80,8 @@
 //!   force/              ForceGenerator, the built-ins, the forces stage
 //!   solver/             mod (the solve stage) body softness sweep
 //!                       contact/ (prepare, solve, restitution)
-//!   constraint/         def joint maths user, one file per joint kind
+//!   constraint/         def joint row (the solver's joint rows) maths user, one file
+//!                       per joint kind
 //!   handler.rs query.rs collision handlers and post-step callbacks; world queries
 //!   snapshot/           write hash cursor layout validate apply diff
 //! ```

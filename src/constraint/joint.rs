@@ -1,20 +1,18 @@
-//! A built-in joint in a world: its definition, the impulses it carries from
-//! sub-step to sub-step (part of the snapshot), the masses and softness it
-//! derives once per step, and the dispatch of each solver stage to its kind's
-//! file ([`rod`](super::rod), [`pivot`](super::pivot), …).
+//! A built-in joint in a world: its definition and the impulses it carries
+//! from sub-step to sub-step (part of the snapshot); once per step it builds
+//! its row in the solver's dense joint array ([`JointRow`]) and takes the
+//! impulses back from it at the end of the step.
 
 use crate::arena::Handle;
 use crate::body::Body;
 use crate::error::Error;
 use crate::math::scalar::{Scalar, ZERO};
-use crate::math::Matrix22;
 use crate::math::{Rot, Vector2};
-use crate::solver::{Bias, Softness, SolverBody};
+use crate::solver::{JointLanes, JointMasses, Softness, SolverBody};
 
 use super::def::validate_motor;
-use super::maths::point_mass_inverse;
-use super::rod::Distance;
-use super::{pivot, rod, spring, weld, JointDef, JointKind, Motor};
+use super::row::{ConstraintKind, ConstraintRow, JointRow, RowSolve, SpringRow};
+use super::{JointDef, JointKind, MaxTorque, Motor};
 
 /// Stiffness of the soft position correction of rods, ropes, pivots and welds, Hz
 /// (Box2D v3's joint default; capped at a quarter of the sub-step rate).
@@ -45,15 +43,6 @@ pub struct Joint {
     pub(crate) step_linear: Vector2,
     /// Broke this step; removed after it.
     pub(crate) broken: bool,
-    // Per-step solver data (derived).
-    pub(crate) soft: crate::solver::Softness,
-    pub(crate) inv_mass: [Scalar; 2],
-    pub(crate) inv_inertia: [Scalar; 2],
-    /// 1 / (iA + iB): the mass against relative rotation (pivot, weld).
-    pub(crate) axial_mass: Scalar,
-    /// The inverse of the point constraint's 2×2 mass matrix at the start of the
-    /// step (pivot, weld); `None` when singular.
-    pub(crate) point_mass: Option<Matrix22>,
 }
 
 impl Joint {
@@ -105,70 +94,118 @@ impl Joint {
             limit_impulse: ZERO,
             step_linear: Vector2::ZERO,
             broken: false,
-            soft: Softness::RIGID,
-            inv_mass: [ZERO; 2],
-            inv_inertia: [ZERO; 2],
-            axial_mass: ZERO,
-            point_mass: None,
         }
     }
 
-    /// Once per step: masses, and the step's joint softness (see
-    /// `StepContext::joint_softness`).
-    pub(crate) fn prepare(&mut self, a: &Body, b: &Body, soft: Softness) {
+    /// Once per step: the joint's row for the sub-steps, in slot `slot`:
+    /// masses, the step's joint softness (see `StepContext::joint_softness`),
+    /// the impulses in lane formats and the pose of the first sub-step. `sa`,
+    /// `sb` are the solver's copies of `a` and `b`; `h` is the sub-step.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn prepare(
+        &mut self,
+        slot: u32,
+        a: &Body,
+        b: &Body,
+        sa: &SolverBody,
+        sb: &SolverBody,
+        soft: Softness,
+        h: Scalar,
+        inv_h: Scalar,
+    ) -> JointRow {
         let (ma, ia) = crate::solver::inverse_mass(a);
         let (mb, ib) = crate::solver::inverse_mass(b);
-        self.inv_mass = [ma, mb];
-        self.inv_inertia = [ia, ib];
-        // Divisions are slow in fixed point: the masses are inverted once per
-        // step, at the step's anchors, as Box2D v2 does (v3 re-solves the 2×2
-        // system every iteration, which here would cost two divisions a time).
-        self.axial_mass = (ia + ib).recip();
-        self.point_mass = if matches!(self.def.kind, JointKind::Pivot { .. } | JointKind::Weld) {
-            let ra = a.rotation.rotate(self.def.anchor_a);
-            let rb = b.rotation.rotate(self.def.anchor_b);
-            point_mass_inverse(ma, ia, ra, mb, ib, rb)
-        } else {
-            None
-        };
-        self.soft = soft;
         self.step_linear = Vector2::ZERO;
+        let world_point = self.def.body_b.is_none();
+        let row = JointRow {
+            bodies: [self.def.body_a.index(), self.def.body_b.map_or(0, |hb| hb.index())],
+            slot,
+            world_point,
+            solve: RowSolve::Spring(SpringRow::EMPTY),
+        };
+        let anchors = [self.def.anchor_a, self.def.anchor_b];
+        let spring = |stiffness, damping, rest_length| JointRow {
+            solve: RowSolve::Spring(SpringRow {
+                stiffness,
+                damping,
+                rest_length,
+                anchors,
+                inv_mass: [ma, mb],
+                inv_inertia: [ia, ib],
+                step_linear: Vector2::ZERO,
+            }),
+            ..row
+        };
+        let (kind, motor, limits) = match self.def.kind {
+            JointKind::Spring { stiffness, rest_length } => return spring(stiffness, ZERO, rest_length),
+            JointKind::DampedSpring { stiffness, damping, rest_length } => {
+                return spring(stiffness, damping, rest_length)
+            }
+            JointKind::Rod { length } => (ConstraintKind::Rod { length }, None, None),
+            JointKind::Rope { max_length } => (ConstraintKind::Rope { max_length }, None, None),
+            JointKind::Pivot { limits, motor } => {
+                (ConstraintKind::Pivot { limits: limits.is_some(), motor: motor.is_some() }, motor, limits)
+            }
+            JointKind::Weld => (ConstraintKind::Weld, None, None),
+        };
+        let motor = motor.map(|m| {
+            let max = match m.max_torque {
+                MaxTorque::Limited(t) => Some(t * h),
+                MaxTorque::Unlimited => None,
+            };
+            (m.speed, max)
+        });
+        let masses = JointMasses {
+            inv_mass: [ma, mb],
+            inv_inertia: [ia, ib],
+            anchors,
+            world_point,
+            point: matches!(kind, ConstraintKind::Pivot { .. } | ConstraintKind::Weld),
+            angular: matches!(kind, ConstraintKind::Weld) || motor.is_some() || limits.is_some(),
+            motor,
+            limits,
+        };
+        let angular = [self.angular_impulse, self.motor_impulse, self.limit_impulse];
+        let lanes = JointLanes::prepare(&masses, sa, sb, soft, inv_h, self.impulse, angular);
+        let mut c = ConstraintRow { kind, reference: self.reference, lanes };
+        c.measure(sa, sb);
+        JointRow { solve: RowSolve::Constraint(c), ..row }
     }
 
-    /// After the sub-steps: the step's impulse magnitude; true when it breaks.
-    pub(crate) fn finish_step(&mut self) -> bool {
+    /// A joint whose bodies are gone this step: no row, nothing applied,
+    /// nothing to store.
+    pub(crate) fn deactivate(&mut self) {
+        self.step_linear = Vector2::ZERO;
+        self.broken = false;
+    }
+
+    /// After the sub-steps, from the joint's row: the impulses back in
+    /// `Scalar` (N·s, N·m·s), the step's impulse; true when it breaks.
+    pub(crate) fn finish_step(&mut self, row: &JointRow) -> bool {
+        match &row.solve {
+            RowSolve::Spring(s) => self.step_linear += s.step_linear,
+            RowSolve::Constraint(c) => {
+                let (linear, angular) = c.lanes.active();
+                match c.kind {
+                    ConstraintKind::Rod { .. } | ConstraintKind::Rope { .. } => {
+                        if linear {
+                            self.impulse.x = c.lanes.linear_impulse().x;
+                        }
+                    }
+                    ConstraintKind::Pivot { .. } | ConstraintKind::Weld => {
+                        if linear {
+                            self.impulse = c.lanes.linear_impulse();
+                        }
+                        if angular {
+                            [self.angular_impulse, self.motor_impulse, self.limit_impulse] =
+                                c.lanes.angular_impulses();
+                        }
+                    }
+                }
+                self.step_linear += c.lanes.step_linear();
+            }
+        }
         // The magnitude costs a square root: only joints that can break need it.
         self.def.break_impulse.is_some_and(|limit| self.step_linear.length() > limit)
-    }
-
-    /// Applies the impulses it ended the last sub-step with.
-    pub(crate) fn warm_start(&mut self, a: &mut SolverBody, b: &mut SolverBody) {
-        match self.def.kind {
-            JointKind::Spring { .. } | JointKind::DampedSpring { .. } => {}
-            JointKind::Rod { .. } | JointKind::Rope { .. } => rod::warm_start(self, a, b),
-            JointKind::Pivot { .. } => pivot::warm_start(self, a, b),
-            JointKind::Weld => weld::warm_start(self, a, b),
-        }
-    }
-
-    /// One iteration: with `Bias::On` in the biased sweep of each sub-step
-    /// (springs apply their force only then), `Bias::Off` in the relax sweep.
-    pub(crate) fn solve(&mut self, a: &mut SolverBody, b: &mut SolverBody, h: Scalar, bias: Bias) {
-        match self.def.kind {
-            JointKind::Spring { stiffness, rest_length } => {
-                if bias == Bias::On {
-                    spring::apply(self, a, b, stiffness, ZERO, rest_length, h);
-                }
-            }
-            JointKind::DampedSpring { stiffness, damping, rest_length } => {
-                if bias == Bias::On {
-                    spring::apply(self, a, b, stiffness, damping, rest_length, h);
-                }
-            }
-            JointKind::Rod { length } => rod::solve(self, a, b, length, Distance::Exact, h, bias),
-            JointKind::Rope { max_length } => rod::solve(self, a, b, max_length, Distance::AtMost, h, bias),
-            JointKind::Pivot { limits, motor } => pivot::solve(self, a, b, limits, motor, h, bias),
-            JointKind::Weld => weld::solve(self, a, b, h, bias),
-        }
     }
 }

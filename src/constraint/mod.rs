@@ -17,7 +17,18 @@
 //! * rods, ropes, pivots and welds are velocity constraints with Box2D v3's soft
 //!   position correction (a stiff spring-damper of [`JOINT_HERTZ`] Hz, damping
 //!   ratio [`JOINT_DAMPING_RATIO`]), warm-started from the impulses they ended the
-//!   last sub-step with, and relaxed like contacts.
+//!   last sub-step with, and relaxed like contacts. Their iterations run in the
+//!   solver's 32-bit formats on the bodies' lane velocities, as the contacts
+//!   do: impulses in velocity units, masses as ratios (the format table is in
+//!   `src/solver/joint_lanes.rs`). Prepare turns the persistent impulses (N·s,
+//!   N·m·s, what the snapshot holds) into those units once per step, and the
+//!   end of the step turns them back.
+//!
+//! The sub-steps work on a row per joint in a dense scratch array of the
+//! solver (`row.rs`), built at prepare in joint-slot order: the joints
+//! themselves are read once at prepare and written once at the end of the
+//! step, which keeps the twelve joint passes of a step off the larger joint
+//! slots.
 //!
 //! # Breaking
 //! A breakable joint whose impulse over a step exceeds its limit is removed after
@@ -32,8 +43,9 @@
 
 //!
 //! # Files
-//! [`JointDef`] and its kinds are in `def.rs`, the runtime [`Joint`] and its
-//! dispatch in `joint.rs`, the maths the joints share in `maths.rs`, one file
+//! [`JointDef`] and its kinds are in `def.rs`, the runtime [`Joint`] in
+//! `joint.rs`, its row in the solver's dense joint array and the dispatch of
+//! each solver stage in `row.rs`, the maths the joints share in `maths.rs`, one file
 //! per kind (`spring.rs`, `rod.rs`, `pivot.rs`, `weld.rs`), and the game's
 //! [`Constraint`] in `user.rs`.
 
@@ -42,6 +54,7 @@ mod joint;
 mod maths;
 mod pivot;
 mod rod;
+mod row;
 mod spring;
 mod user;
 mod weld;
@@ -50,5 +63,6 @@ pub(crate) use def::{validate, validate_params};
 pub use def::{JointDef, JointKind, MaxTorque, Motor};
 pub use joint::{Joint, JointHandle, JointMarker, JOINT_DAMPING_RATIO, JOINT_HERTZ};
 pub(crate) use maths::ground;
+pub(crate) use row::JointRow;
 pub use user::{Constraint, ConstraintHandle, ConstraintMarker, MAX_USER_CONSTRAINTS};
 pub(crate) use user::{UserConstraint, UserConstraints};

@@ -50,11 +50,11 @@
 //! how far the bodies moved and turned since the step began (linearised in the
 //! turn; see [`contact`]), so no collision detection runs inside the loop.
 //!
-//! **Numbers.** The contact kernels compute in their own 32-bit integer
-//! formats ([`lanes`]: velocities Q16.16, impulses in velocity units, mass
-//! ratios instead of masses), whose products are a 32×32→64 multiply and a
-//! shift; everything persistent, the joints and the once-per-step prepare and
-//! store stay in `Scalar`. Each body's `Scalar` velocity stays its own: the
+//! **Numbers.** The contact kernels and the joints' iterations compute in
+//! their own 32-bit integer formats ([`lanes`], [`joint_lanes`]: velocities
+//! Q16.16, impulses in velocity units, mass ratios instead of masses), whose
+//! products are a 32×32→64 multiply and a shift; everything persistent, the
+//! springs and the once-per-step prepare and store stay in `Scalar`. Each body's `Scalar` velocity stays its own: the
 //! kernels' changes are carried back as differences ([`body`]), so a body no
 //! contact touches moves exactly as before.
 //!
@@ -65,12 +65,18 @@
 //! bit, so a colour's contacts are solved eight at a time where the processor
 //! has AVX2 ([`dispatch`]) and one at a time elsewhere, with identical results.
 //! Joints run in joint-slot order, bodies in slot order: every order is a
-//! function of the simulation state alone.
+//! function of the simulation state alone. Prepare writes one row per joint
+//! into a dense scratch array (`Solver::joints`, in joint-slot order, each row
+//! with its two body slots), the joint passes run over that array and never
+//! read the joints themselves, and the end of the step writes the rows'
+//! impulses back into the joints, as the contacts' are written back into the
+//! arbiters.
 
 mod body;
 mod colour;
 mod contact;
 mod dispatch;
+mod joint_lanes;
 mod lanes;
 mod softness;
 mod sweep;
@@ -81,14 +87,15 @@ pub use dispatch::{limit_simd_level, simd_level, SimdLevel};
 
 pub(crate) use body::inverse_mass;
 use contact::LaneParams;
+pub(crate) use joint_lanes::{JointLanes, JointMasses};
 use managed::ManagedSlice;
-pub(crate) use softness::{Row, Softness};
+pub(crate) use softness::Softness;
 pub(crate) use sweep::{Bias, Sweep};
 
 use crate::arbiter::ArbiterStore;
 use crate::arena::Arena;
 use crate::body::Body;
-use crate::constraint::{Joint, JointMarker, UserConstraints};
+use crate::constraint::{Joint, JointMarker, JointRow, UserConstraints};
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::Vector2;
 use crate::step::StepContext;
@@ -132,7 +139,7 @@ pub(crate) fn solve(
     let h = ctx.h;
     let params = LaneParams::new(ctx);
     load(ctx, bodies, arbiters, solver);
-    prepare_joints(ctx, bodies, joints, constraints);
+    prepare_joints(ctx, bodies, joints, constraints, solver);
     // The built-in joints work on the solver's bodies; the game's constraints
     // see `Body`, so when there are any the solver's copy is written to the
     // bodies around their pass.
@@ -143,10 +150,10 @@ pub(crate) fn solve(
         for (sb, lane) in solver.bodies.iter_mut().zip(solver.lanes.iter_mut()).filter(|(sb, _)| sb.forced) {
             sb.add_force(lane);
         }
-        for_each_joint(joints, solver, Sweep::Forward, |j, a, b| j.warm_start(a, b));
+        for_each_joint(solver, Sweep::Forward, |j, (_, la), (_, lb)| j.warm_start(la, lb));
         let count_totals = substep > 0;
         dispatch::run(solver, warm_start_direction(substep), &contact::WarmStart { count_totals });
-        for_each_joint(joints, solver, Sweep::Forward, |j, a, b| j.solve(a, b, h, Bias::On));
+        for_each_joint(solver, Sweep::Forward, |j, a, b| j.solve(a, b, h, Bias::On));
         if user {
             store_bodies(solver, bodies);
             solve_user_constraints(bodies, constraints, h);
@@ -160,7 +167,7 @@ pub(crate) fn solve(
         // adds a forward sweep, which drains what the push-out left in the
         // velocities the step ends with.
         // The joints' relax pass runs in reverse slot order in every sub-step.
-        for_each_joint(joints, solver, Sweep::Reverse, |j, a, b| j.solve(a, b, h, Bias::Off));
+        for_each_joint(solver, Sweep::Reverse, |j, a, b| j.solve(a, b, h, Bias::Off));
         contact_sweep(solver, &params, Bias::Off, sweep);
         if substep + 1 == n {
             contact_sweep(solver, &params, Bias::Off, Sweep::Forward);
@@ -169,9 +176,7 @@ pub(crate) fn solve(
     dispatch::run(solver, Sweep::Forward, &contact::Restitute { params: &params });
     solver.store_contacts(arbiters.live_mut());
     store_bodies(solver, bodies);
-    for (_, j) in joints.iter_mut() {
-        j.broken = j.finish_step();
-    }
+    store_joints(solver, joints);
     for (_, b) in bodies.iter_mut() {
         b.force_dv = Vector2::ZERO;
         b.force_dw = ZERO;
@@ -229,72 +234,73 @@ fn reload_bodies(solver: &mut Solver<'_>, bodies: &Arena<'_, Body>) {
     }
 }
 
-/// Runs `f` on every joint with its two solver bodies, in joint-slot order
-/// (`Sweep::Forward`) or the reverse. A joint to a world point gets a static
-/// stand-in body for B.
+/// A solver body with its lanes.
+type BodyPair<'b> = (&'b mut SolverBody, &'b mut BodyLanes);
+
+/// Runs `f` on every joint row with its two solver bodies and their lanes, in
+/// joint-slot order (`Sweep::Forward`) or the reverse. A joint to a world
+/// point gets a static stand-in body for B. The joints write the lanes as the
+/// contact kernels do; the next [`SolverBody::pull`] carries what they did
+/// into the `Scalar` velocity.
 fn for_each_joint(
-    joints: &mut Arena<'_, Joint, JointMarker>,
     solver: &mut Solver<'_>,
     order: Sweep,
-    mut f: impl FnMut(&mut Joint, &mut SolverBody, &mut SolverBody),
+    mut f: impl FnMut(&mut JointRow, BodyPair<'_>, BodyPair<'_>),
 ) {
     let bodies: &mut [SolverBody] = &mut solver.bodies;
     let lanes: &mut [BodyLanes] = &mut solver.lanes;
-    let used = joints.slots_used();
-    for k in 0..used {
-        let i = match order {
-            Sweep::Forward => k,
-            Sweep::Reverse => used.saturating_sub(1).saturating_sub(k),
-        };
-        let Some(j) = joints.get_at_mut(i) else { continue };
-        let ia = j.def.body_a.index();
-        match j.def.body_b {
-            Some(hb) => {
-                let ib = hb.index();
-                if let (Some((a, b)), Some((la, lb))) =
-                    (body::pair_at(bodies, ia, ib), body::pair_at(lanes, ia, ib))
-                {
-                    a.pull(la);
-                    b.pull(lb);
-                    f(j, a, b);
-                    push_dynamic(a, la);
-                    push_dynamic(b, lb);
-                }
+    let rows: &mut [JointRow] = &mut solver.joints;
+    let rows = rows.get_mut(..solver.joint_count).unwrap_or_default();
+    let mut visit = |row: &mut JointRow| {
+        let [ia, ib] = row.bodies;
+        if row.world_point {
+            let (mut ground, mut ground_lanes) = (SolverBody::EMPTY, BodyLanes::EMPTY);
+            if let (Some(a), Some(la)) = (bodies.get_mut(ia as usize), lanes.get_mut(ia as usize)) {
+                f(row, (a, la), (&mut ground, &mut ground_lanes));
             }
-            None => {
-                let mut ground = SolverBody::EMPTY;
-                if let (Some(a), Some(la)) = (bodies.get_mut(ia as usize), lanes.get_mut(ia as usize)) {
-                    a.pull(la);
-                    f(j, a, &mut ground);
-                    push_dynamic(a, la);
-                }
-            }
+        } else if let (Some((a, b)), Some((la, lb))) =
+            (body::pair_at(bodies, ia, ib), body::pair_at(lanes, ia, ib))
+        {
+            f(row, (a, la), (b, lb));
         }
+    };
+    match order {
+        Sweep::Forward => rows.iter_mut().for_each(&mut visit),
+        Sweep::Reverse => rows.iter_mut().rev().for_each(&mut visit),
     }
 }
 
-/// Moves what a joint did to a dynamic body's `Scalar` velocity into its
-/// lanes.
-fn push_dynamic(sb: &mut SolverBody, lane: &mut BodyLanes) {
-    if sb.dynamic {
-        sb.push(lane);
-    }
-}
-
-/// Once per step: joint masses and softness; the game's `prepare`.
+/// Once per step: each joint's row (masses, softness, lane formats), in
+/// joint-slot order; the game's `prepare`. The solver's copies of the bodies
+/// are already loaded.
 fn prepare_joints(
     ctx: &StepContext,
     bodies: &Arena<'_, Body>,
     joints: &mut Arena<'_, Joint, JointMarker>,
     constraints: &mut UserConstraints<'_>,
+    solver: &mut Solver<'_>,
 ) {
     let ground = crate::constraint::ground();
-    for (_, j) in joints.iter_mut() {
+    let sground = SolverBody::EMPTY;
+    let sbodies: &[SolverBody] = &solver.bodies;
+    let rows: &mut [JointRow] = &mut solver.joints;
+    let mut count = 0;
+    for (i, j) in joints.iter_mut() {
         let b = j.def.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
-        if let Some(a) = bodies.get(j.def.body_a) {
-            j.prepare(a, b, ctx.joint_softness);
+        let sb = j.def.body_b.filter(|&hb| bodies.get(hb).is_some());
+        let sb = sb.and_then(|hb| sbodies.get(hb.index() as usize)).unwrap_or(&sground);
+        let a = bodies.get(j.def.body_a);
+        let sa = sbodies.get(j.def.body_a.index() as usize);
+        // The rows are as many as the joint slots, so one is always free.
+        match (a, sa, rows.get_mut(count)) {
+            (Some(a), Some(sa), Some(row)) => {
+                *row = j.prepare(i.index(), a, b, sa, sb, ctx.joint_softness, ctx.h, ctx.inv_h);
+                count += 1;
+            }
+            _ => j.deactivate(),
         }
     }
+    solver.joint_count = count;
     // A dormant game constraint (a body of it removed) is skipped.
     for (_, c) in constraints.iter_mut() {
         let b = match c.body_b {
@@ -303,6 +309,17 @@ fn prepare_joints(
         };
         if let (Some(a), Some(b)) = (bodies.get(c.body_a), b) {
             c.constraint.prepare(a, b, ctx.dt);
+        }
+    }
+}
+
+/// After the sub-steps: each row's impulses back into its joint, and whether
+/// the joint broke.
+fn store_joints(solver: &Solver<'_>, joints: &mut Arena<'_, Joint, JointMarker>) {
+    let rows: &[JointRow] = &solver.joints;
+    for row in rows.get(..solver.joint_count).unwrap_or_default() {
+        if let Some(j) = joints.get_at_mut(row.slot) {
+            j.broken = j.finish_step(row);
         }
     }
 }
@@ -341,6 +358,11 @@ pub(crate) struct Solver<'a> {
     /// Each live arbiter's colour, lane and effective masses this step
     /// (scratch); as long as the arbiters.
     pub(crate) scratch: ManagedSlice<'a, ContactScratch>,
+    /// One row per live joint this step, in joint-slot order (scratch); as
+    /// long as the joint slots.
+    pub(crate) joints: ManagedSlice<'a, JointRow>,
+    /// Joint rows in use this step.
+    pub(crate) joint_count: usize,
     /// Where each colour's lanes are: the overflow, then colours 0..23.
     pub(crate) ranges: [(u32, u32); colour::RUNS],
     /// Lanes in use this step.

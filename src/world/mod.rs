@@ -159,6 +159,8 @@ impl<'a> World<'a> {
                 lanes: s.solver_lanes,
                 constraints: s.contact_constraints,
                 scratch: s.contact_scratch,
+                joints: s.joint_rows,
+                joint_count: 0,
                 ranges: [(0, 0); crate::solver::RUNS],
                 count: 0,
                 overflow: 0,

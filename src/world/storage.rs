@@ -10,7 +10,7 @@ use managed::ManagedSlice;
 use crate::arbiter::Arbiter;
 use crate::arena::Slot;
 use crate::body::Body;
-use crate::constraint::Joint;
+use crate::constraint::{Joint, JointRow};
 #[cfg(feature = "alloc")]
 use crate::error::Error;
 use crate::geometry::PolygonPath;
@@ -122,6 +122,8 @@ pub struct Storage<'a> {
     pub(crate) joints: ManagedSlice<'a, Slot<Joint>>,
     /// Body pairs held by joints that do not collide (scratch); as long as `joints`.
     pub(crate) joint_pairs: ManagedSlice<'a, (u32, u32)>,
+    /// The solver's joint rows (scratch); as long as `joints`.
+    pub(crate) joint_rows: ManagedSlice<'a, JointRow>,
     /// The automatic index's sort order (scratch), one entry per body.
     pub(crate) sweep_order: ManagedSlice<'a, u32>,
     /// The solver's copy of each body during a step (scratch), one per body.
@@ -157,8 +159,10 @@ impl Storage<'_> {
         + size_of::<(u32, u32)>()
         + size_of::<ContactConstraint>()
         + size_of::<ContactScratch>();
-    /// Bytes per joint slot: the joint and its entry in the non-colliding pairs.
-    pub const BYTES_PER_JOINT: usize = size_of::<Slot<Joint>>() + size_of::<(u32, u32)>();
+    /// Bytes per joint slot: the joint, its entry in the non-colliding pairs
+    /// and the solver's row for it.
+    pub const BYTES_PER_JOINT: usize =
+        size_of::<Slot<Joint>>() + size_of::<(u32, u32)>() + size_of::<JointRow>();
     /// Bytes per post-step queue slot: the function and its key.
     pub const BYTES_PER_CALLBACK: usize = size_of::<PostStepEntry>();
 
@@ -199,6 +203,7 @@ impl Storage<'_> {
             arbiters_next: ManagedSlice::Owned(filled(c.contacts, "arbiter", || Arbiter::EMPTY)?),
             joints: ManagedSlice::Owned(filled(c.joints, "joint", || Slot::EMPTY)?),
             joint_pairs: ManagedSlice::Owned(filled(c.joints, "joint", || (0, 0))?),
+            joint_rows: ManagedSlice::Owned(filled(c.joints, "joint row", || JointRow::EMPTY)?),
             sweep_order: ManagedSlice::Owned(filled(c.bodies, "sweep order", || 0)?),
             solver_bodies: ManagedSlice::Owned(filled(c.bodies, "solver body", || SolverBody::EMPTY)?),
             solver_lanes: ManagedSlice::Owned(filled(c.bodies, "solver body", || BodyLanes::EMPTY)?),
@@ -238,6 +243,7 @@ pub struct WorldBuffers<
     arbiters_next: [Arbiter; CONTACTS],
     joints: [Slot<Joint>; JOINTS],
     joint_pairs: [(u32, u32); JOINTS],
+    joint_rows: [JointRow; JOINTS],
     sweep_order: [u32; BODIES],
     solver_bodies: [SolverBody; BODIES],
     solver_lanes: [BodyLanes; BODIES],
@@ -267,6 +273,7 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize, const CALL
             arbiters_next: [Arbiter::EMPTY; CONTACTS],
             joints: [Slot::EMPTY; JOINTS],
             joint_pairs: [(0, 0); JOINTS],
+            joint_rows: [JointRow::EMPTY; JOINTS],
             sweep_order: [0; BODIES],
             solver_bodies: [SolverBody::EMPTY; BODIES],
             solver_lanes: [BodyLanes::EMPTY; BODIES],
@@ -288,6 +295,7 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize, const CALL
             arbiters_next: ManagedSlice::Borrowed(&mut self.arbiters_next[..]),
             joints: ManagedSlice::Borrowed(&mut self.joints[..]),
             joint_pairs: ManagedSlice::Borrowed(&mut self.joint_pairs[..]),
+            joint_rows: ManagedSlice::Borrowed(&mut self.joint_rows[..]),
             sweep_order: ManagedSlice::Borrowed(&mut self.sweep_order[..]),
             solver_bodies: ManagedSlice::Borrowed(&mut self.solver_bodies[..]),
             solver_lanes: ManagedSlice::Borrowed(&mut self.solver_lanes[..]),

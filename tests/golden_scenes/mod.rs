@@ -26,7 +26,7 @@ pub const GOLDEN_CORE_SCENE: u64 = 0x88b8_fbd2_c9ca_3c7d;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_PYRAMID: u64 = 0x4824_b2cf_8384_a768;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_MIXED: u64 = 0x499e_c3ba_57e2_7659;
+pub const GOLDEN_MIXED: u64 = 0xbd56_ea6e_f157_789d;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_LONG: u64 = 0x0330_f2a7_2a22_c49a;
 

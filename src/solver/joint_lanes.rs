@@ -1,0 +1,747 @@
+//! The built-in joints inside the sub-steps, in 32-bit integer formats.
+//!
+//! The joints' warm start and their biased and relax iterations work, as the
+//! contact kernels do, directly on each body's lane record ([`BodyLanes`]:
+//! Q16.16 velocity and rim speed ŵ = ω·r_b), with products as a 32×32→64
+//! multiply and a shift ([`lanes::mul`] and its widening form below). What a
+//! joint changes in the lanes is carried into the body's `Scalar` velocity by
+//! the next [`SolverBody::pull`], exactly as a contact's change is; so the
+//! joints need no pull or push of their own and the `Scalar` velocity stays
+//! the truth.
+//!
+//! **Lanes never see a mass.** Once per step (`Joint::prepare`, in `Scalar`)
+//! each joint turns its masses into ratios and its accumulated impulses into
+//! velocity units:
+//!
+//! * a linear impulse λ (N·s; the point constraint of pivots and welds, the
+//!   axial impulse of rods and ropes) is carried as λ̂ = λ·s, s = 1/m_A + 1/m_B,
+//!   the velocity change it makes to the two centres together. It moves a
+//!   centre by ρ = (1/m)/s ≤ 1 times λ̂, and a rim speed by κ·(r̂ × λ̂), with
+//!   r̂ = r/r_b the anchor's arm in body radii and κ = r_b²/(I·s) ≤ r_b²/ρ_g² ≤ 8
+//!   (ρ_g the radius of gyration; r_b ≤ √8·ρ_g for every convex shape, so the
+//!   bound comes by construction, and prepare clamps to it).
+//! * the point constraint's 2×2 mass becomes M̂ = s·K⁻¹: K ≥ s·I (the arms only
+//!   add), so its eigenvalues, and hence its entries, lie in [0, 1].
+//! * a rod's effective mass along its current axis becomes μ̂ = s/k ≤ 1,
+//!   refreshed each sub-step (the axis turns).
+//! * an angular impulse L (N·m·s; motor, limits, the weld's angle) is carried as
+//!   L̂ = L·(1/I_A + 1/I_B), the change of relative spin it makes (rad/s). It
+//!   moves a rim speed by α·L̂, α = r_b·(1/I)/(1/I_A + 1/I_B) ≤ r_b ≤ 128 m.
+//!
+//! The anchors' arms follow the bodies' rotation: once per sub-step, after the
+//! positions are integrated (and at prepare for the first sub-step), each
+//! joint rotates its local anchors by the body's rotation (Q2.30) and measures
+//! its position error from the `Scalar` positions; the warm start and biased
+//! iteration of the next sub-step and the relax iteration of this one use that
+//! pose, which is the pose each of them sees. Only pivots with limits and welds
+//! also measure their relative angle (a `Scalar` atan2, once per sub-step).
+//!
+//! | quantity | format | resolution | bound | why |
+//! |---|---|---|---|---|
+//! | v, ŵ (the body lanes) | Q16.16 | 1.5e-5 m/s | ±[`V_WALL`] | clamped after every joint update, as after every contact update |
+//! | λ̂, L̂ (accumulated, velocity units) | Q16.16 | 1.5e-5 m/s, rad/s | ±[`LAMBDA_MAX`] | clamped at every update (the contacts' crush limit) |
+//! | anchor rates, relative spin ω_B − ω_A, rate + bias | Q16.16 (64-bit sums) | 1.5e-5 | saturated to ±32,768 before they scale a row | \|v\| ≤ 2,048 m/s; \|ω\| ≤ the step's angular limit after each integration |
+//! | ρ, μ̂, soft scales s_m, s_i; M̂ entries; unit axis, rotation (c, s) | Q2.30 | 9.3e-10 | [0, 1]; ±1; ±1 | mass ratios (above), M̂ symmetric with eigenvalues in [0, 1], unit vectors |
+//! | κ | Q5.27 | 7.5e-9 | [0, 8] | r_b ≤ √8·ρ_g; clamped |
+//! | α | Q9.23 | 1.2e-7 m | [0, 128] | α ≤ r_b ≤ `MAX_BODY_RADIUS` |
+//! | local anchor, world arm r (m), 1/r_b | Q10.22 | 2.4e-7 | ±363 m, ≤ 256 1/m | anchors ≤ 256 m a component (`max_anchor`), \|q\| = 1; r_b ≥ 2⁻⁸ m in the solver |
+//! | arm in body radii r̂, ĝ = κ·r̂, γ = κ·(r̂ × axis) | Q12.20 | 9.5e-7 | ±1,024 (r̂), ±2,047 | saturated: only an anchor over 1,024 body radii from a tiny body's centre reaches them, and then it loses turning response, never wraps |
+//! | position error d, rod length and its error | Q13.19 | 1.9e-6 m | ±2,047 m a component | saturated (the bias it makes is clamped anyway) |
+//! | relative angle, limits, their gaps | Q4.28 | 3.7e-9 rad | ±2π | angles in (−π, π], limits in [−π, π] |
+//! | bias rate, 1/h | Q22.10 | 9.8e-4 1/s | ≤ 2²⁰ | dt ≥ 2⁻¹⁶ s, ≤ 16 sub-steps |
+//! | bias velocity | Q16.16 | 1.5e-5 m/s | ±4,096 | clamped |
+//!
+//! Every narrowing from a 64-bit sum saturates (`narrow`), so no value wraps,
+//! whatever the input. Values enter from `Scalar` rounded half up and
+//! saturated to their bound ([`lanes::from_scalar`]); the impulses leave at
+//! the end of the step as λ = λ̂/s and L = L̂/(1/I_A + 1/I_B) (`Scalar`), which
+//! is what the snapshot holds, so restoring a snapshot and stepping on gives
+//! the same bits as stepping on.
+//!
+//! Springs are forces, not constraints: they stay in `Scalar` (pull, apply,
+//! push), once per sub-step.
+
+use crate::math::scalar::{Scalar, ZERO};
+use crate::math::{Rot, Vector2};
+
+use super::body::{BodyLanes, SolverBody, VX, VY, W};
+use super::lanes::{self, from_scalar, mul, to_scalar, FQ, FU, FV, LAMBDA_MAX, V_WALL};
+use super::{Bias, Softness};
+
+/// Fractional bits of anchors, world arms and 1/r_b (Q10.22).
+const FA: u32 = 22;
+/// Fractional bits of arms in body radii and their κ multiples (Q12.20).
+const FH: u32 = 20;
+/// Fractional bits of κ (Q5.27).
+const FK: u32 = 27;
+/// Fractional bits of α (Q9.23).
+const FAL: u32 = 23;
+/// Fractional bits of position errors and lengths (Q13.19).
+const FD: u32 = 19;
+/// Fractional bits of angles (Q4.28).
+const FT: u32 = 28;
+/// One in Q2.30.
+const ONE_U: i32 = 1 << FU;
+/// Bound of arms in body radii (whole radii).
+const ARM_HAT_MAX: i64 = 1024;
+/// Bound of ĝ and γ.
+const G_MAX: i64 = 2047;
+/// Bound of position errors and lengths, m.
+const D_MAX: i64 = 2047;
+/// Bound of a bias velocity, Q16.16.
+const BIAS_MAX: i64 = 4096 << FV;
+/// Bound of a rate or rate + bias before it scales a row, Q16.16.
+const RATE_MAX: i64 = (1 << 31) - 1;
+
+/// `(a·b + 2^(K−1)) >> K` on the exact 64-bit product, kept in 64 bits.
+#[inline(always)]
+fn wide<const K: u32>(a: i32, b: i32) -> i64 {
+    (i64::from(a) * i64::from(b) + (1i64 << (K - 1))) >> K
+}
+
+/// A 64-bit value (|x| ≤ 2³²) scaled by a Q2.30 factor, rounded as [`mul`].
+#[inline(always)]
+fn scale(x: i64, s: i32) -> i64 {
+    (x.clamp(-RATE_MAX, RATE_MAX) * i64::from(s) + (1i64 << (FU - 1))) >> FU
+}
+
+/// Saturated to ±`bound` and narrowed.
+#[inline(always)]
+fn narrow(x: i64, bound: i64) -> i32 {
+    x.clamp(-bound, bound) as i32
+}
+
+/// Adds `dv` to lane `k` of a body, at the velocity wall.
+#[inline(always)]
+fn add(lane: &mut BodyLanes, k: usize, dv: i64) {
+    if let Some(x) = lane.0.get_mut(k) {
+        *x = narrow(i64::from(*x) + dv, i64::from(V_WALL));
+    }
+}
+
+/// Adds `dv` (|dv| ≤ 2³⁰) to lane `k` of a body, at the velocity wall.
+#[inline(always)]
+fn add32(lane: &mut BodyLanes, k: usize, dv: i32) {
+    if let Some(x) = lane.0.get_mut(k) {
+        *x = x.wrapping_add(dv).clamp(-V_WALL, V_WALL);
+    }
+}
+
+#[inline(always)]
+fn get(lane: &BodyLanes, k: usize) -> i32 {
+    lane.0.get(k).copied().unwrap_or(0)
+}
+
+/// A soft row in lane formats: bias rate (Q22.10), mass and impulse scales
+/// (Q2.30).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct LaneSoft {
+    rate: i32,
+    mass_scale: i32,
+    impulse_scale: i32,
+}
+
+impl LaneSoft {
+    fn new(s: Softness) -> Self {
+        Self {
+            rate: from_scalar(s.bias_rate, FQ, 1 << 21),
+            mass_scale: from_scalar(s.mass_scale, FU, 1),
+            impulse_scale: from_scalar(s.impulse_scale, FU, 1),
+        }
+    }
+
+    /// (bias velocity Q16.16, s_m, s_i) for a position error `c` of `f`
+    /// fractional bits: soft and biased with `Bias::On`, rigid without.
+    #[inline(always)]
+    fn row<const SHIFT: u32>(&self, c: i32, bias: Bias) -> (i64, i32, i32) {
+        match bias {
+            Bias::On => {
+                let b = wide::<SHIFT>(c, self.rate).clamp(-BIAS_MAX, BIAS_MAX);
+                (b, self.mass_scale, self.impulse_scale)
+            }
+            Bias::Off => (0, ONE_U, 0),
+        }
+    }
+}
+
+/// M̂ = (K/s)⁻¹ as (m11, m12, m22), from the normalised masses (`ma` = ρ_A,
+/// `ia` = (1/I_A)/s, …) and the arms. K/s is (ρ_A + ρ_B)·I plus the arms'
+/// terms (1/I)/s·[r]ᵀ[r], so its eigenvalues are ≥ ρ_A + ρ_B = 1, its
+/// determinant is ≥ 1 and one reciprocal serves the three entries. `None`
+/// when singular (only when the entries saturate).
+fn point_mass(
+    ma: Scalar,
+    ia: Scalar,
+    ra: Vector2,
+    mb: Scalar,
+    ib: Scalar,
+    rb: Vector2,
+) -> Option<[Scalar; 3]> {
+    let m = ma + mb;
+    let k11 = (m + (ia * (ra.y * ra.y))) + (ib * (rb.y * rb.y));
+    let k12 = -((ia * (ra.x * ra.y)) + (ib * (rb.x * rb.y)));
+    let k22 = (m + (ia * (ra.x * ra.x))) + (ib * (rb.x * rb.x));
+    let det = (k11 * k22) - (k12 * k12);
+    if det <= ZERO {
+        return None;
+    }
+    let inv = det.recip();
+    Some([k22 * inv, -(k12 * inv), k11 * inv])
+}
+
+/// One body's side of a joint: its ratios for the step and its arm at the
+/// current pose.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Side {
+    /// Local anchor (m, Q10.22).
+    anchor: [i32; 2],
+    /// ρ = (1/m)/s (Q2.30).
+    rho: i32,
+    /// κ = r_b²·(1/I)/s (Q5.27).
+    kappa: i32,
+    /// α = r_b·(1/I)/(1/I_A + 1/I_B) (m, Q9.23).
+    alpha: i32,
+    /// 1/r_b (Q10.22).
+    iota: i32,
+    /// Arm in world orientation (m, Q10.22).
+    r: [i32; 2],
+    /// Arm in body radii (Q12.20).
+    rh: [i32; 2],
+    /// κ·r̂ (Q12.20).
+    g: [i32; 2],
+}
+
+impl Side {
+    fn new(
+        anchor: Vector2,
+        inv_mass: Scalar,
+        inv_inertia: Scalar,
+        body: &SolverBody,
+        inv_s: Scalar,
+        inv_k: Scalar,
+    ) -> Self {
+        let r = body.radius;
+        Self {
+            anchor: [from_scalar(anchor.x, FA, 511), from_scalar(anchor.y, FA, 511)],
+            rho: from_scalar(inv_mass * inv_s, FU, 1),
+            // Each factor saturates in Scalar only beyond the bound of 8.
+            kappa: from_scalar(((inv_inertia * inv_s) * r) * r, FK, 8).max(0),
+            alpha: from_scalar((inv_inertia * inv_k) * r, FAL, 255).max(0),
+            iota: from_scalar(body.inv_radius, FA, 511),
+            r: [0; 2],
+            rh: [0; 2],
+            g: [0; 2],
+        }
+    }
+
+    /// The arm at rotation `q`.
+    #[inline(always)]
+    fn pose(&mut self, q: Rot) {
+        let (c, s) = (from_scalar(q.c, FU, 1), from_scalar(q.s, FU, 1));
+        let [x, y] = self.anchor;
+        // |anchor| ≤ 256 m a component, so each component stays ≤ 363 m.
+        self.r =
+            [mul::<FU>(c, x).wrapping_sub(mul::<FU>(s, y)), mul::<FU>(s, x).wrapping_add(mul::<FU>(c, y))];
+        for k in 0..2 {
+            let (r, rh, g) = (self.r[k], &mut self.rh[k], &mut self.g[k]);
+            *rh = narrow(wide::<{ 2 * FA - FH }>(r, self.iota), ARM_HAT_MAX << FH);
+            *g = narrow(wide::<FK>(self.kappa, *rh), G_MAX << FH);
+        }
+    }
+
+    /// The arm in world orientation as a `Scalar` (exact).
+    fn arm(&self) -> Vector2 {
+        Vector2::new(to_scalar(self.r[0], FA), to_scalar(self.r[1], FA))
+    }
+
+    /// Velocity of the anchor point (Q16.16, 64-bit): v + ŵ·perp(r̂).
+    #[inline(always)]
+    fn anchor_velocity(&self, l: &BodyLanes) -> [i64; 2] {
+        let w = get(l, W);
+        [i64::from(get(l, VX)) - wide::<FH>(w, self.rh[1]), i64::from(get(l, VY)) + wide::<FH>(w, self.rh[0])]
+    }
+
+    /// Spin ω = ŵ/r_b (rad/s, Q16.16, 64-bit).
+    #[inline(always)]
+    fn spin(&self, l: &BodyLanes) -> i64 {
+        wide::<FA>(get(l, W), self.iota)
+    }
+
+    /// Applies p (a linear impulse in velocity units) at the anchor, or −p
+    /// when `NEG` (body A).
+    #[inline(always)]
+    fn apply_point<const NEG: bool>(&self, l: &mut BodyLanes, p: [i32; 2]) {
+        // |ρ·p| ≤ 2Λ = 2³⁰ and |v| ≤ the wall (2²⁷): the sum cannot wrap.
+        let dx = mul::<FU>(self.rho, p[0]);
+        let dy = mul::<FU>(self.rho, p[1]);
+        let dw = wide::<FH>(self.g[0], p[1]) - wide::<FH>(self.g[1], p[0]);
+        if NEG {
+            add32(l, VX, dx.wrapping_neg());
+            add32(l, VY, dy.wrapping_neg());
+            add(l, W, -dw);
+        } else {
+            add32(l, VX, dx);
+            add32(l, VY, dy);
+            add(l, W, dw);
+        }
+    }
+
+    /// Applies `sign`·l (an angular impulse in relative-spin units).
+    #[inline(always)]
+    fn apply_angular(&self, lane: &mut BodyLanes, l: i32, negate: bool) {
+        let dw = wide::<FAL>(self.alpha, l);
+        add(lane, W, if negate { -dw } else { dw });
+    }
+}
+
+/// The axis of a rod or rope at the current pose.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Axis {
+    /// Unit axis from A's anchor to B's (Q2.30); zero when the anchors meet.
+    n: [i32; 2],
+    /// Length error ℓ − length (m, Q13.19).
+    c: i32,
+    /// μ̂ = s/k along the axis (Q2.30).
+    mu: i32,
+    /// ρ·n for each body (Q2.30).
+    pn: [[i32; 2]; 2],
+    /// r̂ × n for each body (Q12.20).
+    x: [i32; 2],
+    /// κ·(r̂ × n) for each body (Q12.20).
+    gamma: [i32; 2],
+}
+
+/// A joint's state in lane formats for one step, held in its row of the
+/// solver's dense joint array (scratch, not part of the snapshot: prepare
+/// rebuilds it from the joint's persistent impulses every step).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct JointLanes {
+    /// The linear rows run (s > 0).
+    linear: bool,
+    /// The angular rows run (1/I_A + 1/I_B > 0).
+    angular: bool,
+    side: [Side; 2],
+    /// M̂ = s·K⁻¹ (Q2.30): m11, m12, m22; all zero when K is singular.
+    m: [i32; 3],
+    soft: LaneSoft,
+    /// 1/h (Q22.10).
+    inv_h: i32,
+    /// A fixed world point B's anchor is measured from (a joint to a world
+    /// point), else zero.
+    base: Vector2,
+    /// Position error B − A of the anchors (m, Q13.19).
+    d: [i32; 2],
+    axis: Axis,
+    /// Relative angle (rad, Q4.28), when measured.
+    angle: i32,
+    /// A pivot's limits (rad, Q4.28): lower, upper.
+    limits: [i32; 2],
+    /// A pivot motor's target speed (rad/s, Q16.16) and largest accumulated
+    /// impulse (Q16.16).
+    motor: [i32; 2],
+    /// Accumulated linear impulse λ̂ (Q16.16): point (x, y) or axial (x).
+    lambda: [i32; 2],
+    /// Accumulated angular impulses L̂ (Q16.16): [angular, motor, limit].
+    pub(crate) ang: [i32; 3],
+    /// Linear impulse applied this step, λ̂ summed (Q16.16, 64-bit).
+    sum: [i64; 2],
+    inv_s: Scalar,
+    inv_k: Scalar,
+}
+
+/// Which accumulated angular impulse a row uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Angular {
+    /// The weld's angle, or a pivot's upper limit.
+    Main = 0,
+    /// A pivot's motor.
+    Motor = 1,
+    /// A pivot's lower limit.
+    Limit = 2,
+}
+
+/// Per-step inputs of [`JointLanes::prepare`] (all `Scalar`).
+pub(crate) struct JointMasses {
+    pub(crate) inv_mass: [Scalar; 2],
+    pub(crate) inv_inertia: [Scalar; 2],
+    pub(crate) anchors: [Vector2; 2],
+    /// Whether B is a fixed world point (its anchor is then that point).
+    pub(crate) world_point: bool,
+    /// Whether the point constraint's 2×2 mass is needed (pivot, weld).
+    pub(crate) point: bool,
+    /// Whether there are angular rows (a weld, a pivot with a motor or
+    /// limits); without, the angular impulses are neither used nor stored.
+    pub(crate) angular: bool,
+    /// A pivot motor's target speed (rad/s) and largest impulse per sub-step
+    /// (N·m·s; `None` unlimited).
+    pub(crate) motor: Option<(Scalar, Option<Scalar>)>,
+    /// A pivot's limits (rad).
+    pub(crate) limits: Option<(Scalar, Scalar)>,
+}
+
+impl JointLanes {
+    /// Once per step: ratios, softness and the accumulated impulses in lane
+    /// formats, and the arms and position error of the first sub-step. `impulse` (N·s) and
+    /// `angular` (N·m·s: angular, motor, limit) are the persistent impulses.
+    pub(crate) fn prepare(
+        m: &JointMasses,
+        a: &SolverBody,
+        b: &SolverBody,
+        soft: Softness,
+        inv_h: Scalar,
+        impulse: Vector2,
+        angular: [Scalar; 3],
+    ) -> Self {
+        let [ma, mb] = m.inv_mass;
+        let [ia, ib] = m.inv_inertia;
+        let s = ma + mb;
+        let k = ia + ib;
+        let rows = m.angular && k > ZERO;
+        let inv_s = s.recip();
+        let inv_k = if rows { k.recip() } else { ZERO };
+        let (anchor_b, base) =
+            if m.world_point { (Vector2::ZERO, m.anchors[1]) } else { (m.anchors[1], Vector2::ZERO) };
+        let mut j = Self {
+            linear: s > ZERO,
+            angular: rows,
+            side: [
+                Side::new(m.anchors[0], ma, ia, a, inv_s, inv_k),
+                Side::new(anchor_b, mb, ib, b, inv_s, inv_k),
+            ],
+            m: [0; 3],
+            soft: LaneSoft::new(soft),
+            inv_h: from_scalar(inv_h, FQ, 1 << 21),
+            base,
+            inv_s,
+            inv_k,
+            ..Self::INACTIVE
+        };
+        if let Some((lower, upper)) = m.limits {
+            j.limits = [from_scalar(lower, FT, 7), from_scalar(upper, FT, 7)];
+        }
+        if let Some((speed, max)) = m.motor {
+            let lim = i64::from(LAMBDA_MAX >> FV);
+            j.motor = [
+                from_scalar(speed, FV, 1024),
+                max.map_or(LAMBDA_MAX, |t| from_scalar(t * k, FV, lim).max(0)),
+            ];
+        }
+        j.pose(a, b);
+        if m.point && j.linear {
+            // M̂ = (K/s)⁻¹, from the arms at the start of the step: the
+            // normalised K has eigenvalues ≥ 1, so M̂'s entries are in [−1, 1].
+            let (ra, rb) = (j.side[0].arm(), j.side[1].arm());
+            if let Some(mm) = point_mass(ma * inv_s, ia * inv_s, ra, mb * inv_s, ib * inv_s, rb) {
+                j.m = mm.map(|x| from_scalar(x, FU, 1));
+            }
+        }
+        let v = |x: Scalar| from_scalar(x, FV, i64::from(LAMBDA_MAX >> FV));
+        j.lambda = [v(impulse.x * s), v(impulse.y * s)];
+        if rows {
+            j.ang = [v(angular[0] * k), v(angular[1] * k), v(angular[2] * k)];
+        }
+        j
+    }
+
+    /// A record with no rows to run: what prepare starts from.
+    pub(crate) const INACTIVE: Self = Self {
+        linear: false,
+        angular: false,
+        side: [Side { anchor: [0; 2], rho: 0, kappa: 0, alpha: 0, iota: 0, r: [0; 2], rh: [0; 2], g: [0; 2] };
+            2],
+        m: [0; 3],
+        soft: LaneSoft { rate: 0, mass_scale: 0, impulse_scale: 0 },
+        inv_h: 0,
+        base: Vector2::ZERO,
+        d: [0; 2],
+        axis: Axis { n: [0; 2], c: 0, mu: 0, pn: [[0; 2]; 2], x: [0; 2], gamma: [0; 2] },
+        angle: 0,
+        limits: [0; 2],
+        motor: [0; 2],
+        lambda: [0; 2],
+        ang: [0; 3],
+        sum: [0; 2],
+        inv_s: ZERO,
+        inv_k: ZERO,
+    };
+
+    /// The anchors' arms and position error at the bodies' current pose.
+    pub(crate) fn pose(&mut self, a: &SolverBody, b: &SolverBody) {
+        let [sa, sb] = &mut self.side;
+        sa.pose(a.q);
+        sb.pose(b.q);
+        // B − A in 64 bits: positions (Q32.32, |x| < 2³¹ each) differ by
+        // less than 2⁶³, and the arms (Q10.22) are exact in Q32.32.
+        let c = (b.p + self.base) - a.p;
+        let arm = |r: i32| i64::from(r) << (32 - FA);
+        let dx = c.x.to_bits().saturating_add(arm(sb.r[0]) - arm(sa.r[0]));
+        let dy = c.y.to_bits().saturating_add(arm(sb.r[1]) - arm(sa.r[1]));
+        let round = |x: i64| narrow((x >> (32 - FD)) + ((x >> (31 - FD)) & 1), D_MAX << FD);
+        self.d = [round(dx), round(dy)];
+    }
+
+    /// The rod's axis, length error and effective mass at the current pose
+    /// (after [`pose`](Self::pose)); `length` in m.
+    pub(crate) fn axis(&mut self, length: Scalar) {
+        let [dx, dy] = self.d;
+        // |d| ≤ 2,047 m a component: the square fits 61 bits.
+        let sq = i64::from(dx) * i64::from(dx) + i64::from(dy) * i64::from(dy);
+        let len = sq.unsigned_abs().isqrt() as i64;
+        if len == 0 {
+            self.axis = Axis::default();
+            return;
+        }
+        let n = [((i64::from(dx) << FU) / len) as i32, ((i64::from(dy) << FU) / len) as i32];
+        let c = narrow(len - i64::from(from_scalar(length, FD, D_MAX)), D_MAX << FD);
+        let mut k = 1i64 << FU;
+        let mut ax = Axis { n, c, ..Axis::default() };
+        for (i, s) in self.side.iter().enumerate() {
+            let x = narrow(wide::<FU>(s.rh[0], n[1]) - wide::<FU>(s.rh[1], n[0]), G_MAX << FH);
+            // κ·x² in Q2.30: x² (Q.20, ≤ 2⁴²) times κ at 17 fractional bits.
+            k += (wide::<FH>(x, x) * i64::from(s.kappa >> 10) + (1 << 6)) >> 7;
+            if let (Some(xi), Some(gi), Some(pi)) = (ax.x.get_mut(i), ax.gamma.get_mut(i), ax.pn.get_mut(i)) {
+                *xi = x;
+                *gi = narrow(wide::<FK>(s.kappa, x), G_MAX << FH);
+                *pi = [mul::<FU>(s.rho, n[0]), mul::<FU>(s.rho, n[1])];
+            }
+        }
+        // k ≥ 1, so μ̂ = 1/k ≤ 1.
+        ax.mu = ((1i64 << (2 * FU)) / k) as i32;
+        self.axis = ax;
+    }
+
+    /// Sets the relative angle (rad, in (−π, π]).
+    pub(crate) fn set_angle(&mut self, angle: Scalar) {
+        self.angle = from_scalar(angle, FT, 7);
+    }
+
+    /// The point constraint's warm start: the accumulated λ̂ again.
+    #[inline]
+    pub(crate) fn warm_point(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes) {
+        if !self.linear {
+            return;
+        }
+        self.apply_point(la, lb, self.lambda);
+    }
+
+    fn apply_point(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes, p: [i32; 2]) {
+        self.sum[0] += i64::from(p[0]);
+        self.sum[1] += i64::from(p[1]);
+        let [sa, sb] = &self.side;
+        sa.apply_point::<true>(la, p);
+        sb.apply_point::<false>(lb, p);
+    }
+
+    /// One iteration of the point constraint (pivot, weld): the anchors
+    /// coincide.
+    #[inline]
+    pub(crate) fn solve_point(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes, bias: Bias) {
+        if !self.linear {
+            return;
+        }
+        let [sa, sb] = &self.side;
+        let (va, vb) = (sa.anchor_velocity(la), sb.anchor_velocity(lb));
+        let (bx, sm, si) = self.soft.row::<{ FD + FQ - FV }>(self.d[0], bias);
+        let (by, _, _) = self.soft.row::<{ FD + FQ - FV }>(self.d[1], bias);
+        let u = [narrow(vb[0] - va[0] + bx, RATE_MAX), narrow(vb[1] - va[1] + by, RATE_MAX)];
+        let [m11, m12, m22] = self.m;
+        let mu =
+            [wide::<FU>(m11, u[0]) + wide::<FU>(m12, u[1]), wide::<FU>(m12, u[0]) + wide::<FU>(m22, u[1])];
+        let mut applied = [0; 2];
+        for k in 0..2 {
+            let old = self.lambda[k];
+            let delta = -scale(mu[k], sm) - wide::<FU>(si, old);
+            let new = narrow(i64::from(old) + delta, i64::from(LAMBDA_MAX));
+            self.lambda[k] = new;
+            applied[k] = new.wrapping_sub(old);
+        }
+        self.apply_point(la, lb, applied);
+    }
+
+    /// Applies an axial impulse `l` (velocity units) along the axis.
+    fn apply_axial(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes, l: i32) {
+        let ax = &self.axis;
+        self.sum[0] += wide::<FU>(ax.n[0], l);
+        self.sum[1] += wide::<FU>(ax.n[1], l);
+        for (i, (lane, sign)) in [(la, -1i64), (lb, 1i64)].into_iter().enumerate() {
+            let (Some(pn), Some(&g)) = (ax.pn.get(i), ax.gamma.get(i)) else { continue };
+            add(lane, VX, sign * i64::from(mul::<FU>(pn[0], l)));
+            add(lane, VY, sign * i64::from(mul::<FU>(pn[1], l)));
+            add(lane, W, sign * wide::<FH>(g, l));
+        }
+    }
+
+    /// The rod's warm start.
+    #[inline]
+    pub(crate) fn warm_axial(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes) {
+        if !self.linear {
+            return;
+        }
+        self.apply_axial(la, lb, self.lambda[0]);
+    }
+
+    /// One iteration of a rod (`rope` false: `|d| = length`) or a rope
+    /// (`|d| ≤ length`: pulls only, and only when taut or about to be within
+    /// the sub-step).
+    #[inline]
+    pub(crate) fn solve_axial(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes, rope: bool, bias: Bias) {
+        let ax = self.axis;
+        if !self.linear || ax.mu == 0 {
+            return;
+        }
+        let dvx = i64::from(get(lb, VX)) - i64::from(get(la, VX));
+        let dvy = i64::from(get(lb, VY)) - i64::from(get(la, VY));
+        let rate = ((dvx * i64::from(ax.n[0]) + dvy * i64::from(ax.n[1]) + (1 << (FU - 1))) >> FU)
+            + wide::<FH>(get(lb, W), ax.x[1])
+            - wide::<FH>(get(la, W), ax.x[0]);
+        let (b, sm, si) = if rope && ax.c < 0 {
+            // Slack: let it lengthen up to the slack within this sub-step, no more.
+            (wide::<{ FD + FQ - FV }>(ax.c, self.inv_h).clamp(-BIAS_MAX, BIAS_MAX), ONE_U, 0)
+        } else {
+            self.soft.row::<{ FD + FQ - FV }>(ax.c, bias)
+        };
+        let t = scale(rate + b, sm);
+        let old = self.lambda[0];
+        let delta = -scale(t, ax.mu) - wide::<FU>(si, old);
+        let mut new = narrow(i64::from(old) + delta, i64::from(LAMBDA_MAX));
+        if rope {
+            // A rope only pulls: the impulse on B along A→B is never positive.
+            new = new.min(0);
+        }
+        self.lambda[0] = new;
+        self.apply_axial(la, lb, new.wrapping_sub(old));
+    }
+
+    /// Relative spin ω_B − ω_A (rad/s, Q16.16, 64-bit).
+    #[inline(always)]
+    fn relative_spin(&self, la: &BodyLanes, lb: &BodyLanes) -> i64 {
+        let [sa, sb] = &self.side;
+        sb.spin(lb) - sa.spin(la)
+    }
+
+    /// Applies an angular impulse `l` (relative-spin units; negated on A).
+    #[inline(always)]
+    fn apply_angular(&self, la: &mut BodyLanes, lb: &mut BodyLanes, l: i32) {
+        let [sa, sb] = &self.side;
+        sa.apply_angular(la, l, true);
+        sb.apply_angular(lb, l, false);
+    }
+
+    /// Warm start of the angular rows: `sign`·(motor + limit − main).
+    #[inline]
+    pub(crate) fn warm_angular(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes, negate: bool) {
+        if !self.angular {
+            return;
+        }
+        let [main, motor, limit] = self.ang.map(i64::from);
+        let l = narrow(motor + limit - main, RATE_MAX);
+        if l == 0 {
+            return;
+        }
+        self.apply_angular(la, lb, if negate { l.wrapping_neg() } else { l });
+    }
+
+    /// The weld's angular warm start.
+    #[inline]
+    pub(crate) fn warm_weld(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes) {
+        if self.angular {
+            self.apply_angular(la, lb, self.ang[0]);
+        }
+    }
+
+    /// The weld's angular row: the relative angle held at zero.
+    #[inline]
+    pub(crate) fn solve_weld(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes, bias: Bias) {
+        if !self.angular {
+            return;
+        }
+        let rate = self.relative_spin(la, lb);
+        let (b, sm, si) = self.soft.row::<{ FT + FQ - FV }>(self.angle, bias);
+        let old = self.ang[0];
+        let delta = -scale(rate + b, sm) - wide::<FU>(si, old);
+        let new = narrow(i64::from(old) + delta, i64::from(LAMBDA_MAX));
+        self.ang[0] = new;
+        self.apply_angular(la, lb, new.wrapping_sub(old));
+    }
+
+    /// A pivot's motor: drives `sign`·(ω_B − ω_A) towards its target speed,
+    /// within its torque limit.
+    #[inline]
+    pub(crate) fn solve_motor(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes, negate: bool) {
+        if !self.angular {
+            return;
+        }
+        let [speed, max] = self.motor.map(i64::from);
+        let spin = self.relative_spin(la, lb);
+        let spin = if negate { -spin } else { spin };
+        let rate = (spin - speed).clamp(-RATE_MAX, RATE_MAX);
+        let old = self.ang[Angular::Motor as usize];
+        let new = narrow((i64::from(old) - rate).clamp(-max, max), i64::from(LAMBDA_MAX));
+        self.ang[Angular::Motor as usize] = new;
+        let applied = new.wrapping_sub(old);
+        self.apply_angular(la, lb, if negate { applied.wrapping_neg() } else { applied });
+    }
+
+    /// A pivot's limits, `lower` ≤ `sign`·θ ≤ `upper` (rad): each one-sided,
+    /// speculative while inside the limit, soft when past it.
+    #[inline]
+    pub(crate) fn solve_limits(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes, negate: bool, bias: Bias) {
+        if !self.angular {
+            return;
+        }
+        let angle = if negate { self.angle.wrapping_neg() } else { self.angle };
+        let [lower, upper] = self.limits;
+        let sign = |x: i32| if negate { x.wrapping_neg() } else { x };
+        // Lower limit: θ − lower ≥ 0, pushes θ up (impulse ≥ 0).
+        let spin = self.relative_spin(la, lb);
+        let spin = if negate { -spin } else { spin };
+        let applied = self.limit_step(angle.wrapping_sub(lower), spin, bias, Angular::Limit);
+        self.apply_angular(la, lb, sign(applied));
+        // Upper limit: upper − θ ≥ 0, pushes θ down (stored as a positive impulse).
+        let spin = self.relative_spin(la, lb);
+        let spin = if negate { -spin } else { spin };
+        let applied = self.limit_step(upper.wrapping_sub(angle), -spin, bias, Angular::Main);
+        self.apply_angular(la, lb, sign(applied).wrapping_neg());
+    }
+
+    fn limit_step(&mut self, c: i32, rate: i64, bias: Bias, which: Angular) -> i32 {
+        let (b, sm, si) = if c > 0 {
+            (wide::<{ FT + FQ - FV }>(c, self.inv_h).clamp(-BIAS_MAX, BIAS_MAX), ONE_U, 0)
+        } else {
+            self.soft.row::<{ FT + FQ - FV }>(c, bias)
+        };
+        let i = which as usize;
+        let Some(&old) = self.ang.get(i) else { return 0 };
+        let delta = -scale(rate + b, sm) - wide::<FU>(si, old);
+        let new = narrow((i64::from(old) + delta).max(0), i64::from(LAMBDA_MAX));
+        if let Some(x) = self.ang.get_mut(i) {
+            *x = new;
+        }
+        new.wrapping_sub(old)
+    }
+
+    /// Whether the linear rows ran this step (the persistent impulses are
+    /// then replaced by [`linear_impulse`](Self::linear_impulse)).
+    pub(crate) fn active(&self) -> (bool, bool) {
+        (self.linear, self.angular)
+    }
+
+    /// The accumulated linear impulse in N·s.
+    pub(crate) fn linear_impulse(&self) -> Vector2 {
+        let s = self.inv_s;
+        Vector2::new(to_scalar(self.lambda[0], FV) * s, to_scalar(self.lambda[1], FV) * s)
+    }
+
+    /// The accumulated angular impulses in N·m·s: [angular, motor, limit].
+    pub(crate) fn angular_impulses(&self) -> [Scalar; 3] {
+        self.ang.map(|l| to_scalar(l, FV) * self.inv_k)
+    }
+
+    /// The linear impulse applied over the step (N·s).
+    pub(crate) fn step_linear(&self) -> Vector2 {
+        Vector2::new(
+            lanes::wide_to_scalar(self.sum[0]) * self.inv_s,
+            lanes::wide_to_scalar(self.sum[1]) * self.inv_s,
+        )
+    }
+}
