@@ -47,6 +47,8 @@
 //! * [`index`], [`collide`], [`arbiter`], [`handler`], [`collision`]: the broad
 //!   phase (a trait you can implement), the narrow phase (one file per shape pair),
 //!   the arbiter lifecycle and the callbacks.
+//! * [`continuous`]: continuous collision, which sweeps fast bodies (and
+//!   bullets) to their first impact after the solve.
 //! * [`constraint`]: the manual's spring, damped spring and rod, plus rope,
 //!   pivot (limits, motor) and weld joints, breakable; your own via [`Constraint`].
 //! * the solver: a sub-stepped soft contact and joint solver (Box2D v3's design).
@@ -71,11 +73,12 @@
 //!                       storage (Storage, WorldBuffers, Capacities) bodies joints
 //!   step.rs             StepContext and the pipeline, in order: broad phase →
 //!                       forces → narrow phase and arbiter lifecycle → solve →
-//!                       limits → post_solve; then (in the world) broken joints
-//!                       and post-step callbacks
+//!                       continuous collision → limits → post_solve; then (in
+//!                       the world) broken joints and post-step callbacks
 //!   index/              SpatialIndex, brute_force, sort_and_sweep
 //!   collision.rs        the broad- and narrow-phase stages, the arbiter lifecycle
-//!   collide/            one file per shape pair, manifold
+//!   collide/            one file per shape pair, manifold, toi (time of impact)
+//!   continuous.rs       the continuous collision stage
 //!   arbiter.rs          the manual's five states, ArbiterStore
 //!   force/              ForceGenerator, the built-ins, the forces stage
 //!   solver/             mod (the solve stage) body softness sweep
@@ -145,6 +148,7 @@
 //! | `b2BodyDef` + `b2ShapeDef` + `b2CreatePolygonShape` | `cpBodyNew` + `cpPolyShapeNew` | [`BodyDef::circle`] / [`BodyDef::polygon`]: one shape per body; polygons share a [`PolygonPath`] |
 //! | `b2BodyId` (world + index + generation) | `cpBody*` | [`BodyHandle`] (index + generation + world tag; stale or foreign ⇒ [`Error::StaleHandle`]) |
 //! | `b2_staticBody` / `b2_kinematicBody` / `b2_dynamicBody` | `cpBodyNewStatic` / kinematic / dynamic | [`BodyType`] |
+//! | `b2BodyDef::isBullet`, continuous collision | — | [`BodyDef::bullet`]; fast bodies are always swept against static and kinematic bodies ([`continuous`]) |
 //! | gravity in the world def | `cpSpaceSetGravity` | a [`GravityForceGenerator`] (the manual's force generators) |
 //! | `b2Filter` categories / masks | `cpShapeFilter` groups | collision groups (shared bit ⇒ no collision) and collision levels (select handlers) |
 //! | `b2PreSolveFcn`, begin/end touch events | `cpCollisionHandler` begin / preSolve / postSolve / separate | [`CollisionHandler`] per level pair, [`FnHandler`] |
