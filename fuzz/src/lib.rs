@@ -396,6 +396,7 @@ pub struct BodySpec {
     pub mass: Option<(bool, S)>,
     pub friction: Option<S>,
     pub restitution: Option<S>,
+    /// Bits 0–3: collision groups; bit 7: bullet.
     pub collision_groups: u8,
     /// Levels 0 … 3, so that handlers registered on small levels fire.
     pub collision_level: u8,
@@ -434,8 +435,11 @@ impl BodySpec {
         if let Some(e) = self.restitution {
             d = d.restitution(e.get());
         }
-        // Group bits from a small set so that some pairs share bits.
+        // Group bits from a small set so that some pairs share bits; the top
+        // bit of the same byte makes the body a bullet (continuous collision
+        // against dynamic bodies too).
         d.collision_groups(u32::from(self.collision_groups & 0x0f))
+            .bullet(self.collision_groups & 0x80 != 0)
             .collision_level(u32::from(self.collision_level % 4))
             .user_data(self.user_data)
     }
