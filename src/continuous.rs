@@ -102,7 +102,6 @@ fn swept<'p>(b: &Body, paths: &'p Arena<'_, PolygonPath>) -> Option<Swept<'p>> {
 /// Runs continuous collision after the solve. `solver` holds every body's
 /// pose at the start of the step (`p0`, `q0`) and its turn (`angle`); the
 /// bodies hold their poses now (still with their start-of-step boxes).
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn run(
     bodies: &mut Arena<'_, Body>,
     paths: &Arena<'_, PolygonPath>,

@@ -78,25 +78,33 @@ fn direction(d: Vector2) -> Option<(Vector2, Scalar)> {
 /// `centre`.
 fn ray_circle(c0: Vector2, d: Vector2, centre: Vector2, radius: Scalar) -> Option<Scalar> {
     let m = c0 - centre;
-    // Compared as squares only while they cannot saturate; the motion and the
-    // gap are bounded by the world (2,048 m/s for at most 0.25 s), so
-    // |m| < 2^15 and |m|² < 2^30.
-    let c = m.length_squared() - radius * radius;
-    if c <= ZERO {
+    if within(m, radius) {
         return Some(ZERO);
     }
     let (u, len) = direction(d)?;
-    // Along the unit direction: s² + 2·b·s + c = 0, b = m·u.
+    fraction(circle_entry(m, u, radius)?, len)
+}
+
+/// True when the offset `m` from a circle's centre is within its `radius`.
+fn within(m: Vector2, radius: Scalar) -> bool {
+    // Squares cannot saturate here: the motion and the gap are bounded by
+    // the world (2,048 m/s for at most 0.25 s), so |m| < 2^15, |m|² < 2^30.
+    m.length_squared() <= radius * radius
+}
+
+/// How far along the unit direction `u` a point starting at offset `m` from a
+/// circle's centre (outside it) enters the circle of `radius`, if it does.
+fn circle_entry(m: Vector2, u: Vector2, radius: Scalar) -> Option<Scalar> {
+    // s² + 2·b·s + c = 0 with b = m·u, c = |m|² − radius².
     let b = m.dot(u);
     if b >= ZERO {
         return None;
     }
-    let disc = b * b - c;
+    let disc = b * b - (m.length_squared() - radius * radius);
     if disc < ZERO {
         return None;
     }
-    let s = -b - disc.sqrt();
-    fraction(s.max(ZERO), len)
+    Some((-b - disc.sqrt()).max(ZERO))
 }
 
 /// `s / len` when `s ≤ len` (a point on the motion), else `None`.
@@ -144,9 +152,9 @@ fn ray_rounded_polygon(poly: &PolygonPath, c0: Vector2, d: Vector2, radius: Scal
                 keep(s);
             }
         }
-        // The vertex's circle.
-        if let Some(t) = ray_circle(c0, u * len, v, radius) {
-            keep(t * len);
+        // The vertex's circle (the start is outside it: checked above).
+        if let Some(s) = circle_entry(c0 - v, u, radius) {
+            keep(s);
         }
     }
     best.and_then(|s| fraction(s, len))
