@@ -24,8 +24,9 @@
 //! λ̂ = λ·k with k = 1/m_eff of the row, and turns it into velocity changes by
 //! ratios: ρ = m_eff/m ≤ 1 for the linear part and γ̂ = m_eff·(r×d)·r_b/I for
 //! the rim speed, ≤ r_b/(2ρ_g) ≤ √2 for every convex shape (ρ_g the radius of
-//! gyration). The 27-bit mass range (0.001–100,000 kg) stays in `Scalar`, in the
-//! once-per-step prepare and store. A velocity change below one ulp is lost: a
+//! gyration). The 27-bit mass range (0.001–100,000 kg) never reaches a lane:
+//! the once-per-step prepare works on each pair's inverse masses scaled by one
+//! power of two (see `contact::prepare`), and store in `Scalar`. A velocity change below one ulp is lost: a
 //! 1 g body striking a 100 t one moves it by less than 1.5e-5 m/s, which rounds
 //! to nothing (f32 engines absorb it the same way).
 //!

@@ -1,31 +1,60 @@
-//! Building a contact's lane once per step, in `Scalar`: the arms in body
-//! radii, the mass ratios that replace every effective mass in the sweeps, the
-//! friction factor and, for a two-point manifold, the normalised inverse of its
-//! 2×2 mass matrix.
+//! Building a contact's lane once per step: the arms in body radii, the mass
+//! ratios that replace every effective mass in the sweeps, the friction factor
+//! and, for a two-point manifold, the normalised inverse of its 2×2 mass
+//! matrix.
 //!
 //! For a row along direction d with arms r_A, r_B, k = 1/m_A + 1/m_B +
 //! (r_A×d)²/I_A + (r_B×d)²/I_B is the inverse of the mass the pair presents.
 //! The lanes carry the impulse as λ̂ = λ·k (m/s) and apply it with ρ = (1/m)/k
 //! (≤ 1) and γ̂ = (r×d)·r_b/(I·k), so no mass, and none of the mass range's 27
 //! bits, ever enters a lane.
+//!
+//! **Integer formats.** Written with the arm in body radii, â = (r×d)/r_b,
+//! and each body's rim inverse mass j = r_b²/I, the row is
+//! k = m_A + m_B + j_A·â_A² + j_B·â_B² (m the inverse masses), and every
+//! quantity a lane needs is a ratio of such terms: ρ_A = m_A/k,
+//! γ̂_A = j_A·â_A/k. Ratios do not change when all four inverse masses are
+//! scaled alike, so prepare scales them once per pair by a power of two that
+//! puts m_A + m_B + j_A + j_B in [2³⁰, 2³¹) and works in `i64` from there:
+//!
+//! | quantity | format | bound |
+//! |---|---|---|
+//! | m̂, ĵ (the pair's scaled inverse masses) | integer mantissas | < 2³¹ together |
+//! | anchor components and arms in body radii | Q3.29 | ±[`ARM_MAX`] (clamped) |
+//! | unit vectors, ratios, scales | Q2.30 | ±1 |
+//! | k̂ = m̂_A + m̂_B + ĵ_A·â_A² + ĵ_B·â_B² | mantissa | < 2³⁴ (â² ≤ 4) |
+//! | r̂ = 2⁶⁰/k̂ | Q.60 of 1/k̂ | ≤ 2⁶⁰ (k̂ ≥ 1) |
+//!
+//! Every product of two of these fits `i64` except the few with r̂ or an
+//! impulse, which take an `i128`; one division per row (r̂) and one per
+//! block replace the `Scalar` reciprocals, and nothing here saturates
+//! silently: each lane value is clamped to its format's bound. A body whose
+//! rim inverse mass dwarfs its inverse mass (an inertia far below m·r_b², which
+//! no convex shape has: r_b ≤ 2√2 times the radius of gyration, so j ≤ 8·m)
+//! keeps fewer bits of m̂: its ratios lose precision, never range.
 
 use crate::arbiter::Arbiter;
 use crate::body::Body;
-use crate::math::scalar::{Scalar, ONE, ZERO};
+use crate::math::scalar::{Scalar, ZERO};
 use crate::math::Vector2;
 use crate::solver::body::inverse_mass;
-use crate::solver::lanes::{self, ARM_MAX, BLOCK_MAX, FM, FR, FS, FU, FV, GAMMA_MAX, PHI_MAX};
+use crate::solver::lanes::{self, ARM_MAX, BLOCK_MAX, FM, FR, FS, FU, GAMMA_MAX, PHI_MAX};
 use crate::solver::SolverBody;
 
-use super::{f, field_mut, Block, A_DYNAMIC, B_DYNAMIC, HAS_BLOCK, STATIC_PAIR, TWO_POINTS};
+use super::f;
+use super::{Block, A_DYNAMIC, B_DYNAMIC, HAS_BLOCK, LANES, ROWS, STATIC_PAIR, TWO_POINTS};
 
-/// One body of a pair as prepare sees it: its inverse mass and inertia, and
-/// the radius its rim speed is measured at.
+/// One in Q2.30.
+const ONE30: i64 = 1 << FU;
+/// The arm bound in Q3.29.
+const ARM: i64 = ARM_MAX << FR;
+
+/// One body of a pair as prepare sees it: its inverse mass, its rim inverse
+/// mass j = r_b²/I and the inverse of the radius its rim speed is measured at.
 #[derive(Clone, Copy)]
 struct Side {
     m: Scalar,
-    i: Scalar,
-    radius: Scalar,
+    j: Scalar,
     inv_radius: Scalar,
 }
 
@@ -33,35 +62,141 @@ impl Side {
     #[inline(always)]
     fn new(b: &Body, sb: &SolverBody) -> Self {
         let (m, i) = inverse_mass(b);
-        Self { m, i, radius: sb.radius, inv_radius: sb.inv_radius }
+        // (I⁻¹·r_b)·r_b: r_b² of a small body would keep few bits.
+        Self { m, j: i * sb.radius * sb.radius, inv_radius: sb.inv_radius }
     }
 
-    /// The arm (r×d) in body radii, clamped to ±[`ARM_MAX`].
+    /// An anchor in body radii (Q3.29), each component clamped to ±[`ARM_MAX`].
     #[inline(always)]
-    fn arm(&self, rd: Scalar) -> i32 {
-        lanes::from_scalar(rd * self.inv_radius, FR, ARM_MAX)
-    }
-
-    /// The rim ratio γ̂ = (r×d)·r_b·(1/I)·m_eff, clamped to ±[`GAMMA_MAX`].
-    #[inline(always)]
-    fn gamma(&self, rd: Scalar, m_eff: Scalar) -> i32 {
-        let g = (self.i * rd * m_eff * self.radius).clamp(-GAMMA_MAX, GAMMA_MAX);
-        lanes::from_scalar(g, FU, 2)
+    fn anchor(&self, r: Vector2) -> [i64; 2] {
+        [
+            i64::from(lanes::from_scalar(r.x * self.inv_radius, FR, ARM_MAX)),
+            i64::from(lanes::from_scalar(r.y * self.inv_radius, FR, ARM_MAX)),
+        ]
     }
 }
 
-/// Writes `x` into lane `l` of field `fi`.
+/// `x / 2^k`, rounded half up.
 #[inline(always)]
-fn put(blk: &mut Block, fi: usize, l: usize, x: i32) {
-    if let Some(dst) = field_mut(blk, fi).get_mut(l) {
-        *dst = x;
+fn rnd(x: i64, k: u32) -> i64 {
+    (x + (1 << (k - 1))) >> k
+}
+
+/// `x / 2^k` of a wide product, rounded half up and clamped to ±`bound`.
+#[inline(always)]
+fn rnd_wide(x: i128, k: u32, bound: i64) -> i64 {
+    let r = (x + (1i128 << (k - 1))) >> k;
+    r.clamp(-i128::from(bound), i128::from(bound)) as i64
+}
+
+/// The arm â×d (Q3.29) of an anchor `a` (Q3.29) along unit `d` (Q2.30).
+#[inline(always)]
+fn arm(a: [i64; 2], d: [i64; 2]) -> i64 {
+    rnd(a[0] * d[1] - a[1] * d[0], FU).clamp(-ARM, ARM)
+}
+
+/// The pair's four inverse masses on one scale (see the module docs).
+#[derive(Clone, Copy)]
+struct Pair {
+    m: [i64; 2],
+    j: [i64; 2],
+    /// Mantissa = value·2^(32 − shift).
+    shift: i32,
+}
+
+impl Pair {
+    #[inline(always)]
+    fn new(a: &Side, b: &Side) -> Self {
+        let bits = |x: Scalar| x.to_bits().max(0).unsigned_abs();
+        let (ma, mb, ja, jb) = (bits(a.m), bits(b.m), bits(a.j), bits(b.j));
+        let sum = ma.saturating_add(mb).saturating_add(ja).saturating_add(jb);
+        // The sum's top bit lands on bit 30 (one guard bit below 2³¹).
+        let shift = 33 - sum.leading_zeros() as i32;
+        let scale = |x: u64| -> i64 {
+            let s = if shift >= 0 { x >> shift.unsigned_abs() } else { x << shift.unsigned_abs() };
+            (s as i64).min(1 << 31)
+        };
+        Self { m: [scale(ma), scale(mb)], j: [scale(ja), scale(jb)], shift }
+    }
+
+    /// k̂ for arms `ra`, `rb` (Q3.29): at most 2³¹·(1 + 4) < 2³⁴.
+    #[inline(always)]
+    fn k(&self, ra: i64, rb: i64) -> i64 {
+        self.m[0]
+            + self.m[1]
+            + ((self.j[0] * rnd(ra * ra, FR)) >> FR)
+            + ((self.j[1] * rnd(rb * rb, FR)) >> FR)
+    }
+
+    /// The off-diagonal k̂12 of two normal rows with arms (`a1`, `b1`), (`a2`, `b2`).
+    #[inline(always)]
+    fn k12(&self, (a1, b1): (i64, i64), (a2, b2): (i64, i64)) -> i64 {
+        self.m[0]
+            + self.m[1]
+            + ((self.j[0] * rnd(a1 * a2, FR)) >> FR)
+            + ((self.j[1] * rnd(b1 * b2, FR)) >> FR)
+    }
+
+    /// 1/k as a `Scalar` (kg) from r̂ = 2⁶⁰/k̂: its bits are r̂·2^(4 − shift).
+    #[inline(always)]
+    fn mass(&self, r: i64) -> Scalar {
+        let e = 4 - self.shift;
+        let bits = if e >= 0 { i128::from(r) << e.unsigned_abs() } else { i128::from(r) >> e.unsigned_abs() };
+        Scalar::from_bits(bits.min(i128::from(i64::MAX)) as i64)
+    }
+
+    /// λ·k in Q16.16 for an impulse λ (N·s), clamped to ±`bound` (Q16.16):
+    /// λ_bits·k̂·2^(shift − 48).
+    #[inline(always)]
+    fn impulse(&self, lambda: Scalar, k: i64, bound: i64) -> i64 {
+        let x = i128::from(lambda.to_bits()) * i128::from(k);
+        let down = (48 - self.shift).clamp(1, 126).unsigned_abs();
+        rnd_wide(x, down, bound)
     }
 }
 
-/// 1/(1/m_A + 1/m_B + (r_A×d)²/I_A + (r_B×d)²/I_B) for arms (r×d) `ra`, `rb`.
+/// 2⁶⁰/k̂, or 0 for a row nothing can move.
 #[inline(always)]
-fn k(a: &Side, b: &Side, ra: Scalar, rb: Scalar) -> Scalar {
-    a.m + b.m + a.i * (ra * ra) + b.i * (rb * rb)
+fn recip60(k: i64) -> i64 {
+    if k > 0 {
+        ((1u64 << 60) / k.unsigned_abs()) as i64
+    } else {
+        0
+    }
+}
+
+/// One row's lane values: ρ_A·d, ρ_B·d (Q2.30) and γ̂_A, γ̂_B (Q2.30).
+#[inline(always)]
+fn row(pair: &Pair, r: i64, d: [i64; 2], (ra, rb): (i64, i64)) -> [i64; 6] {
+    // ρ = m̂/k̂ ≤ 1: m̂·r̂ ≤ k̂·r̂ ≤ 2⁶⁰.
+    let ratio = |m: i64| ((m * r) >> FU).min(ONE30);
+    let (pa, pb) = (ratio(pair.m[0]), ratio(pair.m[1]));
+    // γ̂ = ĵ·â/k̂: ĵ·â < 2⁶², times r̂ in i128.
+    let g_max = lanes::from_scalar(GAMMA_MAX, FU, 2).into();
+    let gamma = |j: i64, a: i64| rnd_wide(i128::from(j * a) * i128::from(r), 60 + FR - FU, g_max);
+    [
+        rnd(pa * d[0], FU),
+        rnd(pa * d[1], FU),
+        rnd(pb * d[0], FU),
+        rnd(pb * d[1], FU),
+        gamma(pair.j[0], ra),
+        gamma(pair.j[1], rb),
+    ]
+}
+
+/// Writes `x` into lane `l` of field `fi` (both taken modulo their ranges).
+#[inline(always)]
+fn put(blk: &mut Block, fi: usize, l: usize, x: i64) {
+    blk[(fi / ROWS) % LANES].rows[fi % ROWS][l % LANES] = x as i32;
+}
+
+/// Writes a point's fields, from field `BASE` on, into lane `l`: with the
+/// field numbers constant, each is one store.
+#[inline(always)]
+fn put_point<const BASE: usize>(blk: &mut Block, l: usize, values: &[i64; f::POINT]) {
+    for (x, &v) in values.iter().enumerate() {
+        put(blk, BASE + x, l, v);
+    }
 }
 
 /// Builds lane `l` of `blk` from an arbiter between bodies `a` and `b` (slots
@@ -80,8 +215,10 @@ pub(crate) fn prepare(
 ) -> [[Scalar; 2]; 2] {
     let mut masses = [[ZERO; 2]; 2];
     let (side_a, side_b) = (Side::new(a, sa), Side::new(b, sb));
-    let n = arb.normal;
-    let t = n.right_perp();
+    let pair = Pair::new(&side_a, &side_b);
+    let unit = |x: Scalar| i64::from(lanes::from_scalar(x, FU, 1));
+    let n = [unit(arb.normal.x), unit(arb.normal.y)];
+    let t = [n[1], -n[0]];
     let count = usize::from(arb.count.min(2));
     let static_pair = side_a.m == ZERO || side_b.m == ZERO;
     let mut flags = 0;
@@ -94,138 +231,238 @@ pub(crate) fn prepare(
     if static_pair {
         flags |= STATIC_PAIR;
     }
-    put(blk, f::IA, l, ia as i32);
-    put(blk, f::IB, l, ib as i32);
-    put(blk, f::NX, l, lanes::from_scalar(n.x, FU, 1));
-    put(blk, f::NY, l, lanes::from_scalar(n.y, FU, 1));
-    put(blk, f::E, l, lanes::from_scalar(arb.restitution, FU, 1));
-    let mut kn = [ONE; 2];
-    let mut rn = [(ZERO, ZERO); 2];
-    for (p, src) in arb.points.iter().enumerate() {
-        let base = f::P[p % 2];
-        if p >= count {
+    put(blk, f::IA, l, i64::from(ia));
+    put(blk, f::IB, l, i64::from(ib));
+    put(blk, f::NX, l, n[0]);
+    put(blk, f::NY, l, n[1]);
+    put(blk, f::E, l, lanes::from_scalar(arb.restitution, FU, 1).into());
+    let lambda_max = i64::from(lanes::LAMBDA_MAX);
+    let phi_max = (PHI_MAX - 1) << lanes::FPHI;
+    let friction = i128::from(arb.friction.max(ZERO).to_bits());
+    let mut kn = [0i64; 2];
+    let mut rn = [0i64; 2];
+    let mut arms_n = [(0i64, 0i64); 2];
+    let mut point = |p: usize| -> [i64; f::POINT] {
+        let Some(src) = arb.points.get(p).filter(|_| p < count) else {
             // An unused point: nothing pushes, nothing is applied.
-            for x in 0..f::POINT {
-                put(blk, base + x, l, 0);
-            }
-            continue;
-        }
-        let (ra, rb) = (src.anchor_a, src.anchor_b);
-        let (rna, rnb, rta, rtb) = (ra.cross(n), rb.cross(n), ra.cross(t), rb.cross(t));
-        let k_n = k(&side_a, &side_b, rna, rnb);
-        let k_t = k(&side_a, &side_b, rta, rtb);
-        let (m_n, m_t) = (k_n.recip(), k_t.recip());
-        kn[p % 2] = k_n;
-        rn[p % 2] = (rna, rnb);
-        put(blk, base + f::RAN, l, side_a.arm(rna));
-        put(blk, base + f::RBN, l, side_b.arm(rnb));
-        put(blk, base + f::RAT, l, side_a.arm(rta));
-        put(blk, base + f::RBT, l, side_b.arm(rtb));
-        let ratio = |m: Scalar, me: Scalar, d: Vector2| {
-            let r = (m * me).min(ONE);
-            (lanes::from_scalar(d.x * r, FU, 1), lanes::from_scalar(d.y * r, FU, 1))
+            return [0; f::POINT];
         };
-        let (anx, any) = ratio(side_a.m, m_n, n);
-        let (bnx, bny) = ratio(side_b.m, m_n, n);
-        let (atx, aty) = ratio(side_a.m, m_t, t);
-        let (btx, bty) = ratio(side_b.m, m_t, t);
-        for (fi, x) in [
-            (f::ANX, anx),
-            (f::ANY, any),
-            (f::BNX, bnx),
-            (f::BNY, bny),
-            (f::GAN, side_a.gamma(rna, m_n)),
-            (f::GBN, side_b.gamma(rnb, m_n)),
-            (f::ATX, atx),
-            (f::ATY, aty),
-            (f::BTX, btx),
-            (f::BTY, bty),
-            (f::GAT, side_a.gamma(rta, m_t)),
-            (f::GBT, side_b.gamma(rtb, m_t)),
-        ] {
-            put(blk, base + fi, l, x);
-        }
-        let lambda_max = lanes::to_scalar(lanes::LAMBDA_MAX, FV);
-        let ln = (src.normal_impulse * k_n).clamp(ZERO, lambda_max);
-        let lt = (src.tangent_impulse * k_t).clamp(-lambda_max, lambda_max);
-        put(blk, base + f::LN, l, lanes::from_scalar(ln, FV, 8192));
-        put(blk, base + f::LT, l, lanes::from_scalar(lt, FV, 8192));
-        put(blk, base + f::BASE, l, lanes::from_scalar(src.separation, FS, 4095));
+        let (aa, ab) = (side_a.anchor(src.anchor_a), side_b.anchor(src.anchor_b));
+        let (ran, rbn, rat, rbt) = (arm(aa, n), arm(ab, n), arm(aa, t), arm(ab, t));
+        let (k_n, k_t) = (pair.k(ran, rbn), pair.k(rat, rbt));
+        let (r_n, r_t) = (recip60(k_n), recip60(k_t));
+        kn[p % 2] = k_n;
+        rn[p % 2] = r_n;
+        arms_n[p % 2] = (ran, rbn);
+        masses[p % 2] = [pair.mass(r_n), pair.mass(r_t)];
+        let [anx, any, bnx, bny, gan, gbn] = row(&pair, r_n, n, (ran, rbn));
+        let [atx, aty, btx, bty, gat, gbt] = row(&pair, r_t, t, (rat, rbt));
+        let ln = pair.impulse(src.normal_impulse, k_n, lambda_max).max(0);
+        let lt = pair.impulse(src.tangent_impulse, k_t, lambda_max);
         // |λ_t| ≤ μ·λ_n ⇔ |λ̂_t| ≤ μ·(k_t/k_n)·λ̂_n; φ·min(λ̂_n, c_φ) ≤ Λ.
-        let phi = (arb.friction * k_t * m_n).min(Scalar::from_int(PHI_MAX as i32 - 1));
-        let c_phi = if phi > ONE { lambda_max.div_or_zero(phi) } else { lambda_max };
-        put(blk, base + f::PHI, l, lanes::from_scalar(phi, lanes::FPHI, PHI_MAX));
-        put(blk, base + f::CPHI, l, lanes::from_scalar(c_phi, FV, 8192));
-        let dv = b.velocity_at_offset(rb) - a.velocity_at_offset(ra);
-        put(blk, base + f::VREL, l, lanes::velocity(dv.dot(n)));
-        put(blk, base + f::MAXD, l, 0);
-        put(blk, base + f::TOT, l, 0);
-        if let Some(m) = masses.get_mut(p) {
-            *m = [m_n, m_t];
-        }
-    }
+        // k_t/k_n in Q2.30 (clamped at 2¹⁰), then μ (Q32.32) times it.
+        let ratio = rnd_wide(i128::from(k_t) * i128::from(r_n), 60 - FU, 1 << 40);
+        let phi = rnd_wide(friction * i128::from(ratio), 32 + FU - lanes::FPHI, phi_max).max(0);
+        let c_phi = if phi > 1 << lanes::FPHI { (lambda_max << lanes::FPHI) / phi } else { lambda_max };
+        let dv = b.velocity_at_offset(src.anchor_b) - a.velocity_at_offset(src.anchor_a);
+        [
+            ran,
+            rbn,
+            rat,
+            rbt,
+            anx,
+            any,
+            bnx,
+            bny,
+            gan,
+            gbn,
+            atx,
+            aty,
+            btx,
+            bty,
+            gat,
+            gbt,
+            ln,
+            lt,
+            lanes::from_scalar(src.separation, FS, 4095).into(),
+            phi,
+            c_phi,
+            lanes::velocity(dv.dot(arb.normal)).into(),
+            0,
+            0,
+        ]
+    };
+    let first = point(0);
+    put_point::<{ f::P[0] }>(blk, l, &first);
+    let second = point(1);
+    put_point::<{ f::P[1] }>(blk, l, &second);
     if count == 2 {
         flags |= TWO_POINTS;
-        let k12 = side_a.m + side_b.m + side_a.i * (rn[0].0 * rn[1].0) + side_b.i * (rn[0].1 * rn[1].1);
+        let k12 = pair.k12(arms_n[0], arms_n[1]);
         let scale = if static_pair { static_scale } else { contact_scale };
-        if let Some(block) = block_inverse(kn, [masses[0][0], masses[1][0]], k12, scale) {
+        if let Some(block) = block_inverse(kn, rn, k12, scale) {
             flags |= HAS_BLOCK;
-            let [c12, c21, r11, r12, r21, r22, s11, s12, s21, s22] = block;
-            put(blk, f::C12, l, c12);
-            put(blk, f::C21, l, c21);
-            for (j, x) in [r11, r12, r21, r22].into_iter().enumerate() {
-                put(blk, f::MR + j, l, x);
-            }
-            for (j, x) in [s11, s12, s21, s22].into_iter().enumerate() {
-                put(blk, f::MS + j, l, x);
+            for (fi, x) in [
+                f::C12,
+                f::C21,
+                f::MR,
+                f::MR + 1,
+                f::MR + 2,
+                f::MR + 3,
+                f::MS,
+                f::MS + 1,
+                f::MS + 2,
+                f::MS + 3,
+            ]
+            .into_iter()
+            .zip(block)
+            {
+                put(blk, fi, l, x);
             }
         }
     }
-    put(blk, f::FLAGS, l, flags);
+    put(blk, f::FLAGS, l, i64::from(flags));
     masses
 }
 
-/// The couplings c12 = k12/k22, c21 = k12/k11 (`m` holds 1/k11, 1/k22) and the
-/// normalised inverses
-/// M̂ = D·K⁻¹ (D = diag(k11, k22)) of the rigid system and of the soft one
-/// (diagonal k_ii/s), when the pair is well conditioned: the diagonal
-/// entries within a factor 4 of each other and every entry of M̂ below
-/// [`BLOCK_MAX`]; otherwise `None` and the points are solved one at a time.
+/// The couplings c12 = k12/k22, c21 = k12/k11 (`r` holds 2⁶⁰/k̂11, 2⁶⁰/k̂22)
+/// and the normalised inverses M̂ = D·K⁻¹ (D = diag(k11, k22)) of the rigid
+/// system and of the soft one (diagonal k_ii/s), when the pair is well
+/// conditioned: the diagonal entries within a factor 4 of each other and every
+/// entry of M̂ below [`BLOCK_MAX`]; otherwise `None` and the
+/// points are solved one at a time.
 ///
 /// With ρ² = c12·c21 = k12²/(k11·k22) ≤ 1 and a mass scale s,
 /// M̂ = 1/(1 − s²ρ²)·[[s, −s²·c12], [−s²·c21, s]].
-fn block_inverse(k: [Scalar; 2], m: [Scalar; 2], k12: Scalar, s: Scalar) -> Option<[i32; 10]> {
+fn block_inverse(k: [i64; 2], r: [i64; 2], k12: i64, s: Scalar) -> Option<[i64; 10]> {
     let [k11, k22] = k;
-    let four = Scalar::from_int(4);
-    if k11 <= ZERO || k22 <= ZERO || k11 > k22 * four || k22 > k11 * four {
+    if k11 <= 0 || k22 <= 0 || k11 > k22 * 4 || k22 > k11 * 4 {
         return None;
     }
-    // k12/k22 and k12/k11, by the effective masses already computed.
-    let (c12, c21) = (k12 * m[1], k12 * m[0]);
-    let rho2 = c12 * c21;
-    let inverse = |s: Scalar| -> Option<[Scalar; 4]> {
-        let ss = s * s;
-        let det = ONE - ss * rho2;
-        if det <= ZERO {
+    // |k12| ≤ √(k11·k22) ≤ 2·min(k11, k22): the couplings are within ±2 (Q3.29).
+    let c_max = 2 << FR;
+    let c12 = rnd_wide(i128::from(k12) * i128::from(r[1]), 60 - FR, c_max);
+    let c21 = rnd_wide(i128::from(k12) * i128::from(r[0]), 60 - FR, c_max);
+    let rho2 = rnd(c12 * c21, 2 * FR - FU);
+    // BLOCK_MAX in Q5.27: 2³¹, so an entry below it fits an `i32`.
+    let e_max = BLOCK_MAX.to_bits() >> (32 - FM);
+    let inverse = |s: i64| -> Option<[i64; 4]> {
+        let ss = rnd(s * s, FU);
+        let det = ONE30 - rnd(ss * rho2, FU);
+        if det <= 0 {
             return None;
         }
-        let m = det.recip();
-        let e = [s * m, -(ss * c12 * m), -(ss * c21 * m), s * m];
-        e.iter().all(|x| x.abs() < BLOCK_MAX).then_some(e)
+        // 1/det in Q5.27 (det ≥ 1 ulp: at most 2⁵⁷).
+        let inv = (1i64 << (FU + FM)) / det;
+        let diag = rnd_wide(i128::from(s) * i128::from(inv), FU, e_max);
+        let off = |c: i64| -rnd_wide(i128::from(rnd(ss * c, FR)) * i128::from(inv), FU, e_max);
+        let e = [diag, off(c12), off(c21), diag];
+        e.iter().all(|x| x.abs() < e_max).then_some(e)
     };
-    let rigid = inverse(ONE)?;
-    let soft = inverse(s)?;
-    let q = |x: Scalar| lanes::from_scalar(x, FM, 16);
-    Some([
-        lanes::from_scalar(c12, FR, 2),
-        lanes::from_scalar(c21, FR, 2),
-        q(rigid[0]),
-        q(rigid[1]),
-        q(rigid[2]),
-        q(rigid[3]),
-        q(soft[0]),
-        q(soft[1]),
-        q(soft[2]),
-        q(soft[3]),
-    ])
+    let rigid = inverse(ONE30)?;
+    let soft = inverse(lanes::from_scalar(s, FU, 1).into())?;
+    Some([c12, c21, rigid[0], rigid[1], rigid[2], rigid[3], soft[0], soft[1], soft[2], soft[3]])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn side(mass: f64, radius: f64, inertia: f64) -> Side {
+        let inv = |x: f64| if x > 0.0 { Scalar::from_num(1.0 / x) } else { ZERO };
+        let r = Scalar::from_num(radius);
+        Side { m: inv(mass), j: inv(inertia) * r * r, inv_radius: r.recip() }
+    }
+
+    /// The integer ratios against a float reference of the same formulas, at
+    /// the ends of the mass range (0.001–100,000 kg), radii 1 cm–100 m,
+    /// arms across ±2 radii and one side static.
+    #[test]
+    fn ratios_match_the_definition_across_the_limits() {
+        let masses = [0.001, 0.37, 1.0, 250.0, 100_000.0, 0.0];
+        let radii = [0.01, 0.5, 3.0, 100.0];
+        let arms = [-2.0, -1.3, -0.01, 0.0, 0.25, 0.999, 2.0];
+        let q = |x: i64, f: u32| x as f64 / (1i64 << f) as f64;
+        let mut checked = 0;
+        for &ma in &masses {
+            for &mb in &masses[..5] {
+                for &ra in &radii {
+                    for &rb in &radii {
+                        // A disc and a thin rod: j = 2m and 3m.
+                        let (ia, ib) = (ma * ra * ra / 2.0, mb * rb * rb / 3.0);
+                        let (a, b) = (side(ma, ra, ia), side(mb, rb, ib));
+                        let pair = Pair::new(&a, &b);
+                        // The reference takes the same `Scalar` inputs (a heavy
+                        // body's 1/m keeps few bits in Q32.32 either way).
+                        let g = |x: Scalar| x.to_num::<f64>();
+                        let (ma_i, mb_i, ja, jb) = (g(a.m), g(b.m), g(a.j), g(b.j));
+                        for &xa in &arms {
+                            for &xb in &arms {
+                                let (aa, ab) =
+                                    ((xa * (1 << FR) as f64) as i64, (xb * (1 << FR) as f64) as i64);
+                                let k = pair.k(aa, ab);
+                                let r = recip60(k);
+                                let [_, _, _, _, ga, gb] = row(&pair, r, [0, ONE30], (aa, ab));
+                                let (xa, xb) = (q(aa, FR), q(ab, FR));
+                                let k_ref = ma_i + mb_i + ja * xa * xa + jb * xb * xb;
+                                let ratio_a = q((pair.m[0] * r) >> FU, FU);
+                                assert!(
+                                    (ratio_a - ma_i / k_ref).abs() < 2e-7,
+                                    "ρ_A {ratio_a} vs {}",
+                                    ma_i / k_ref
+                                );
+                                assert!(
+                                    (q(ga, FU) - (ja * xa / k_ref).clamp(-1.5, 1.5)).abs() < 2e-7,
+                                    "γ_A {} vs {} (m {ma} {mb} r {ra} {rb} arm {xa} {xb})",
+                                    q(ga, FU),
+                                    ja * xa / k_ref
+                                );
+                                assert!((q(gb, FU) - (jb * xb / k_ref).clamp(-1.5, 1.5)).abs() < 2e-7, "γ_B");
+                                let m_eff = pair.mass(r).to_num::<f64>();
+                                // Relative 1e-6, or the Scalar's own resolution.
+                                let tol = 1e-6 / k_ref + 1.0 / (1u64 << 31) as f64;
+                                assert!(
+                                    (m_eff - 1.0 / k_ref).abs() < tol,
+                                    "m_eff {m_eff} vs {}",
+                                    1.0 / k_ref
+                                );
+                                // An impulse of 1 N·s in velocity units: k m/s.
+                                let l = q(pair.impulse(Scalar::ONE, k, i64::MAX), FV_BITS);
+                                assert!(
+                                    (l - k_ref.min(32_768.0)).abs() <= 1e-4 * k_ref.max(1.0),
+                                    "λ̂ {l} vs {k_ref}"
+                                );
+                                checked += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert_eq!(checked, 6 * 5 * 16 * 49);
+    }
+
+    const FV_BITS: u32 = lanes::FV;
+
+    /// The block inverse against the 2×2 inverse it stands for.
+    #[test]
+    fn block_inverse_is_the_normalised_inverse() {
+        let (k11, k22, k12) = (3.0_f64, 2.0, 1.5);
+        let scale = |x: f64| (x * (1u64 << 30) as f64) as i64;
+        let k = [scale(k11), scale(k22)];
+        let r = [recip60(k[0]), recip60(k[1])];
+        let block = block_inverse(k, r, scale(k12), Scalar::from_num(0.8)).expect("well conditioned");
+        let q = |x: i64| x as f64 / (1u64 << FM) as f64;
+        // M̂ = D·K⁻¹: D = diag(k11, k22), K⁻¹ = 1/det·[[k22, −k12], [−k12, k11]].
+        let det = k11 * k22 - k12 * k12;
+        let rigid = [k11 * k22 / det, -k11 * k12 / det, -k22 * k12 / det, k22 * k11 / det];
+        for (x, want) in block[2..6].iter().zip(rigid) {
+            assert!((q(*x) - want).abs() < 1e-7, "{} vs {want}", q(*x));
+        }
+        assert!((block[0] as f64 / (1u64 << FR) as f64 - k12 / k22).abs() < 1e-8);
+        // A pair whose diagonal differs by more than 4 is solved point by point.
+        assert!(block_inverse([k[0], k[0] / 5], r, 0, Scalar::ONE).is_none());
+        // A singular block (identical rows) is refused.
+        assert!(block_inverse([k[0], k[0]], [r[0], r[0]], k[0], Scalar::ONE).is_none());
+    }
 }
