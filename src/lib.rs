@@ -203,7 +203,7 @@ pub mod world;
 
 pub use arbiter::{Arbiter, ArbiterState, ContactPoint};
 pub use arena::{Handle, Slot};
-pub use body::{Body, BodyDef, BodyHandle, BodyType, MassSpec, PathHandle, Shape};
+pub use body::{Body, BodyDef, BodyHandle, BodyType, CollisionFilter, MassSpec, PathHandle, Shape};
 pub use collision::Index;
 pub use constraint::{
     Constraint, ConstraintHandle, Joint, JointDef, JointHandle, JointKind, MaxTorque, Motor,

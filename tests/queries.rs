@@ -173,7 +173,7 @@ proptest! {
             prop_assert!((hit.fraction.to_num::<f64>() - frac).abs() < 1e-6);
         }
         // Groups: bodies sharing bit 1 (every fifth) are skipped.
-        let filtered = QueryFilter { groups: 0b10, skip_static: false };
+        let filtered = QueryFilter { groups: 0b10, ..QueryFilter::default() };
         let n2 = w.ray_cast_all(fx, tx, filtered, &mut out).expect("ray");
         prop_assert_eq!(n2, expected.iter().filter(|(_, i)| i % 5 != 4).count());
     }

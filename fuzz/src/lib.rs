@@ -650,7 +650,7 @@ pub struct Filter {
 
 impl Filter {
     fn get(self) -> QueryFilter {
-        QueryFilter { groups: u32::from(self.groups & 0x0f), skip_static: self.skip_static }
+        QueryFilter { groups: u32::from(self.groups & 0x0f), skip_static: self.skip_static, ..QueryFilter::default() }
     }
 }
 
