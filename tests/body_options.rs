@@ -8,7 +8,8 @@ use arphysics::math::scalar::try_from_f64;
 use arphysics::snapshot::PROPS_RECORD;
 use arphysics::{
     BodyDef, BodyHandle, BodyType, Capacities, CollisionFilter, Error, GravityForceGenerator,
-    GravityToPointForceGenerator, MassSpec, PolygonPath, Rect, Rot, Scalar, Vector2, World, WorldDef,
+    GravityToPointForceGenerator, JointDef, JointKind, MassSpec, PolygonPath, Rect, Rot, Scalar, Vector2,
+    World, WorldDef,
 };
 
 fn s(x: f64) -> Scalar {
@@ -109,6 +110,35 @@ fn nothing_spins_a_fixed_rotation_body() {
     w.body_mut(b).expect("live").set_angular_velocity(s(2.0));
     w.set_fixed_rotation(b, true).expect("live");
     assert_eq!(w.body(b).expect("live").angular_velocity(), Scalar::ZERO, "locking stops the spin");
+}
+
+/// A box pinned by a pivot 3 m to its side to a world point: free, it swings
+/// down as a pendulum; with fixed rotation it cannot turn about the pivot, so
+/// the joint holds it in place (within 1 cm) and its rotation stays exactly
+/// the identity: the joint sees its infinite inertia too.
+#[test]
+fn a_fixed_rotation_body_on_a_pivot_is_held_in_place() {
+    let run = |fixed: bool| {
+        let mut w = with_gravity(world());
+        let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("path");
+        let b = w.add_body(BodyDef::polygon(unit).position(v(3.0, 10.0)).fixed_rotation(fixed)).expect("b");
+        let kind = JointKind::Pivot { limits: None, motor: None };
+        w.add_joint(JointDef::to_world(b, v(-3.0, 0.0), v(0.0, 10.0), kind)).expect("joint");
+        let mut lowest = 10.0f64;
+        for _ in 0..120 {
+            w.step(dt()).expect("step");
+            let body = w.body(b).expect("live");
+            if fixed {
+                assert_eq!(body.rotation(), Rot::IDENTITY);
+                assert!((body.position() - v(3.0, 10.0)).length().to_f64() < 0.01, "{:?}", body.position());
+            }
+            lowest = lowest.min(body.position().y.to_f64());
+        }
+        lowest
+    };
+    assert!(run(true) > 9.99);
+    let free = run(false);
+    assert!(free < 8.0, "the free box swings down: lowest y {free}");
 }
 
 // ---- damping --------------------------------------------------------------------
@@ -551,4 +581,37 @@ fn a_snapshot_with_bad_body_options_is_rejected() {
     let (_, b) = w.bodies().next().expect("one body");
     assert!(b.is_fixed_rotation());
     assert_eq!(b.filter(), CollisionFilter { category_bits: 8, mask_bits: u64::MAX, group_index: -2 });
+}
+
+/// The desync locator names each new field.
+#[test]
+fn the_desync_locator_names_the_body_options() {
+    let mut a = world();
+    let h = a.add_body(BodyDef::circle(s(0.5))).expect("b");
+    let snap = |w: &World<'_>| {
+        let mut buf = vec![0u8; w.snapshot_len()];
+        w.snapshot(&mut buf).expect("fits");
+        buf
+    };
+    let base = snap(&a);
+    let cases: [(fn(&mut World<'static>, BodyHandle), &str); 5] = [
+        (|w, h| w.set_fixed_rotation(h, true).expect("ok"), "fixed rotation"),
+        (|w, h| w.set_linear_damping(h, s(1.0)).expect("ok"), "linear damping"),
+        (|w, h| w.set_angular_damping(h, s(1.0)).expect("ok"), "angular damping"),
+        (|w, h| w.set_gravity_scale(h, s(2.0)).expect("ok"), "gravity scale"),
+        (
+            |w, h| {
+                w.set_filter(h, CollisionFilter { mask_bits: 3, ..CollisionFilter::default() }).expect("ok")
+            },
+            "collision filter",
+        ),
+    ];
+    for (change, field) in cases {
+        let mut b = world();
+        b.restore(&base).expect("restore");
+        let hb = b.handle_from_parts(h.index(), h.generation());
+        change(&mut b, hb);
+        let d = arphysics::snapshot::diff(&base, &snap(&b)).expect("parse").expect("a difference");
+        assert_eq!(d.field, field);
+    }
 }
