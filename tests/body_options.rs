@@ -470,6 +470,9 @@ fn a_target_transform_out_of_reach_is_an_error() {
     assert_eq!(w.state_hash(), before);
 }
 
+/// A change made to a body through the world's setters.
+type Change = fn(&mut World<'static>, BodyHandle);
+
 // ---- snapshot ---------------------------------------------------------------------------
 
 fn optioned(w: &mut World<'static>) -> Vec<BodyHandle> {
@@ -512,7 +515,7 @@ fn body_options_round_trip_through_a_snapshot() {
     // Each option changes the hash.
     let base = a.state_hash();
     let h = hs[1];
-    let changes: [fn(&mut World<'static>, BodyHandle); 6] = [
+    let changes: [Change; 6] = [
         |w, h| w.set_fixed_rotation(h, true).expect("ok"),
         |w, h| w.set_linear_damping(h, s(0.75)).expect("ok"),
         |w, h| w.set_angular_damping(h, s(0.75)).expect("ok"),
@@ -594,7 +597,7 @@ fn the_desync_locator_names_the_body_options() {
         buf
     };
     let base = snap(&a);
-    let cases: [(fn(&mut World<'static>, BodyHandle), &str); 5] = [
+    let cases: [(Change, &str); 5] = [
         (|w, h| w.set_fixed_rotation(h, true).expect("ok"), "fixed rotation"),
         (|w, h| w.set_linear_damping(h, s(1.0)).expect("ok"), "linear damping"),
         (|w, h| w.set_angular_damping(h, s(1.0)).expect("ok"), "angular damping"),
