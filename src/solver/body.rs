@@ -153,7 +153,8 @@ impl SolverBody {
             inv_radius,
             force_dv: Vector2::ZERO,
             force_dw: ZERO,
-            w_max: angular_speed_limit(b, wmax),
+            // `angular_speed_limit`, reusing the reciprocal of the radius.
+            w_max: if b.fixed_rotation { ZERO } else { wmax.min(rim_limit(inv_radius)) },
             linear_damping: Scalar::ONE,
             angular_damping: Scalar::ONE,
             damped: false,
@@ -295,8 +296,14 @@ pub(crate) fn angular_speed_limit(b: &Body, wmax: Scalar) -> Scalar {
     if b.fixed_rotation {
         return ZERO;
     }
-    let inv_radius = b.radius.max(MIN_RADIUS).recip();
-    wmax.min(lanes::to_scalar(lanes::V_WALL, FV) * inv_radius)
+    wmax.min(rim_limit(b.radius.max(MIN_RADIUS).recip()))
+}
+
+/// The angular speed at which a body's rim, at 1 / `inv_radius` m from its
+/// centre, reaches the lanes' velocity wall (rad/s).
+#[inline]
+fn rim_limit(inv_radius: Scalar) -> Scalar {
+    lanes::to_scalar(lanes::V_WALL, FV) * inv_radius
 }
 
 /// Bodies `i` and `j`, mutably; `None` if they are the same or out of range.
