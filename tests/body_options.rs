@@ -558,7 +558,7 @@ fn a_snapshot_with_bad_body_options_is_rejected() {
     let rec = 16 + 104 + 4;
     assert_eq!(good.len(), rec + PROPS_RECORD + 12 + 64 + 12 + 4 + 12 + 8, "one record of each");
     let edits: [(usize, Vec<u8>, &str); 6] = [
-        (rec + 9, vec![2 | 0x20], "the reserved sensor bit"),
+        (rec + 9, vec![2 | 0x08], "an unknown flag (0x08)"),
         (rec + 9, vec![2 | 0x80], "an unknown flag"),
         (rec + 58, s(-1.0).to_bits().to_le_bytes().to_vec(), "negative linear damping"),
         (rec + 66, (MAX_BODY_DAMPING + Scalar::DELTA).to_bits().to_le_bytes().to_vec(), "angular damping"),
