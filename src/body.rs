@@ -14,7 +14,7 @@ use crate::geometry::{MassData, PolygonPath};
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rect, Rot, Transform, Vector2};
 
-pub use crate::body_def::{BodyDef, MassSpec};
+pub use crate::body_def::{BodyDef, CollisionFilter, MassSpec};
 
 /// Handle of a body in a [`World`](crate::World).
 pub type BodyHandle = Handle<Body>;
@@ -84,6 +84,16 @@ pub struct Body {
     pub(crate) out_of_bounds: bool,
     /// Swept against dynamic bodies too when fast (see [`BodyDef::bullet`]).
     pub(crate) bullet: bool,
+    /// Never rotates (see [`BodyDef::fixed_rotation`]).
+    pub(crate) fixed_rotation: bool,
+    /// Linear damping, 1/s (see [`BodyDef::linear_damping`]).
+    pub(crate) linear_damping: Scalar,
+    /// Angular damping, 1/s.
+    pub(crate) angular_damping: Scalar,
+    /// Factor on the gravity generators (see [`BodyDef::gravity_scale`]).
+    pub(crate) gravity_scale: Scalar,
+    /// Box2D's category, mask and group.
+    pub(crate) filter: CollisionFilter,
     /// Bounding radius about the centre of mass (m), cached from the shape.
     pub(crate) radius: Scalar,
     /// World bounding box, refreshed whenever the body moves (derived state).
@@ -114,6 +124,11 @@ impl Body {
             user_data: 0,
             out_of_bounds: false,
             bullet: false,
+            fixed_rotation: false,
+            linear_damping: ZERO,
+            angular_damping: ZERO,
+            gravity_scale: crate::math::scalar::ONE,
+            filter: CollisionFilter::DEFAULT,
             radius: ZERO,
             aabb: Rect { min: Vector2::ZERO, max: Vector2::ZERO },
             force_dv: Vector2::ZERO,
@@ -293,6 +308,43 @@ impl Body {
         self.bullet = on;
     }
 
+    /// True when the body never rotates (see [`BodyDef::fixed_rotation`]).
+    #[inline]
+    #[must_use]
+    pub fn is_fixed_rotation(&self) -> bool {
+        self.fixed_rotation
+    }
+
+    /// Linear damping, 1/s (see [`BodyDef::linear_damping`]).
+    #[inline]
+    #[must_use]
+    pub fn linear_damping(&self) -> Scalar {
+        self.linear_damping
+    }
+
+    /// Angular damping, 1/s (see [`BodyDef::angular_damping`]).
+    #[inline]
+    #[must_use]
+    pub fn angular_damping(&self) -> Scalar {
+        self.angular_damping
+    }
+
+    /// Factor on the gravity generators' acceleration (see
+    /// [`BodyDef::gravity_scale`]).
+    #[inline]
+    #[must_use]
+    pub fn gravity_scale(&self) -> Scalar {
+        self.gravity_scale
+    }
+
+    /// Box2D's collision filter: category, mask and group (see
+    /// [`CollisionFilter`]).
+    #[inline]
+    #[must_use]
+    pub fn filter(&self) -> CollisionFilter {
+        self.filter
+    }
+
     /// True once the body left the world bounds: it is frozen until
     /// [`World::set_position`](crate::World::set_position) brings it back or the
     /// game removes it. A frozen body keeps zero velocity and is moved by
@@ -335,10 +387,11 @@ impl Body {
         }
     }
 
-    /// Sets the angular velocity (rad/s). Ignored for static and frozen bodies.
+    /// Sets the angular velocity (rad/s). Ignored for static, frozen and
+    /// fixed-rotation bodies.
     #[inline]
     pub fn set_angular_velocity(&mut self, w: Scalar) {
-        if self.moved_by_step() {
+        if self.moved_by_step() && !self.fixed_rotation {
             self.angular_velocity = w;
         }
     }
@@ -351,10 +404,11 @@ impl Body {
         }
     }
 
-    /// Applies an angular impulse (N·m·s): Δω = L / I. Dynamic bodies only.
+    /// Applies an angular impulse (N·m·s): Δω = L / I. Dynamic bodies only;
+    /// none on a fixed-rotation body (its inertia counts as infinite).
     #[inline]
     pub fn apply_angular_impulse(&mut self, impulse: Scalar) {
-        if self.is_dynamic() && !self.out_of_bounds {
+        if self.is_dynamic() && !self.out_of_bounds && !self.fixed_rotation {
             self.angular_velocity += impulse * self.mass.inv_inertia;
         }
     }

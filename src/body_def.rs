@@ -7,6 +7,54 @@ use crate::body::{BodyType, PathHandle, Shape};
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rot, Vector2};
 
+/// Box2D's collision filter, carried by every body: which categories the body
+/// is in, which it collides with, and a group that overrides both.
+///
+/// Two bodies `a` and `b` pass this filter when
+/// * they share a non-zero `group_index`: always if it is positive, never if it
+///   is negative (whatever the bits), or else
+/// * `a.mask_bits & b.category_bits != 0` and `b.mask_bits & a.category_bits != 0`.
+///
+/// It is combined with the manual's rules: a pair collides only when at least
+/// one body is dynamic, the bodies share no collision-group bit
+/// ([`BodyDef::collision_groups`], a veto even a positive group index does not
+/// lift) *and* the pair passes this filter. The default (category 1, mask all,
+/// group 0) lets everything collide, so worlds that do not use it behave as
+/// before. Queries test a body's category against the query's mask too
+/// ([`QueryFilter`](crate::QueryFilter)).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct CollisionFilter {
+    /// The categories this body is in (default `0x1`).
+    pub category_bits: u64,
+    /// The categories it collides with (default all: `u64::MAX`).
+    pub mask_bits: u64,
+    /// Bodies sharing a positive group always collide, a negative one never;
+    /// 0 (default) is no group.
+    pub group_index: i32,
+}
+
+impl CollisionFilter {
+    /// Category 1, mask all, no group: collides with everything.
+    pub const DEFAULT: Self = Self { category_bits: 1, mask_bits: u64::MAX, group_index: 0 };
+
+    /// True when bodies with filters `self` and `other` may collide (Box2D's rule,
+    /// see the type's docs).
+    #[inline]
+    #[must_use]
+    pub fn accepts(&self, other: &Self) -> bool {
+        if self.group_index == other.group_index && self.group_index != 0 {
+            return self.group_index > 0;
+        }
+        (self.mask_bits & other.category_bits) != 0 && (other.mask_bits & self.category_bits) != 0
+    }
+}
+
+impl Default for CollisionFilter {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
 /// How the mass of a new body is chosen.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MassSpec {
@@ -54,6 +102,19 @@ pub struct BodyDef {
     /// Swept against dynamic bodies too when fast (default false; see
     /// [`BodyDef::bullet`]).
     pub bullet: bool,
+    /// Never rotates (default false; see [`BodyDef::fixed_rotation`]).
+    pub fixed_rotation: bool,
+    /// Linear damping, 1/s, in [0, [`MAX_BODY_DAMPING`](crate::limits::MAX_BODY_DAMPING)]
+    /// (default 0; see [`BodyDef::linear_damping`]).
+    pub linear_damping: Scalar,
+    /// Angular damping, 1/s, in the same range (default 0).
+    pub angular_damping: Scalar,
+    /// Factor on the gravity generators' acceleration, in
+    /// ±[`MAX_GRAVITY_SCALE`](crate::limits::MAX_GRAVITY_SCALE) (default 1;
+    /// see [`BodyDef::gravity_scale`]).
+    pub gravity_scale: Scalar,
+    /// Box2D's category, mask and group (default: collides with everything).
+    pub filter: CollisionFilter,
 }
 
 impl BodyDef {
@@ -85,6 +146,11 @@ impl BodyDef {
             collision_level: 0,
             user_data: 0,
             bullet: false,
+            fixed_rotation: false,
+            linear_damping: ZERO,
+            angular_damping: ZERO,
+            gravity_scale: scalar::ONE,
+            filter: CollisionFilter::DEFAULT,
         }
     }
 
@@ -206,6 +272,53 @@ impl BodyDef {
     #[must_use]
     pub fn bullet(mut self, on: bool) -> Self {
         self.bullet = on;
+        self
+    }
+
+    /// Keeps the body from rotating (Box2D's `fixedRotation`, rapier's
+    /// `lock_rotations`): contacts, joints and impulses see an infinite moment
+    /// of inertia, and its angular velocity stays exactly 0, so its angle never
+    /// changes unless the game sets it. For a player character that must stay
+    /// upright.
+    #[must_use]
+    pub fn fixed_rotation(mut self, on: bool) -> Self {
+        self.fixed_rotation = on;
+        self
+    }
+
+    /// Sets the linear damping c (1/s), in [0, [`MAX_BODY_DAMPING`](crate::limits::MAX_BODY_DAMPING)]:
+    /// each sub-step of h seconds scales the velocity by 1 / (1 + h·c) (as Box2D
+    /// does), so without other forces the speed decays as e^(−c·t). Air drag for a
+    /// top-down game. Dynamic bodies only.
+    #[must_use]
+    pub fn linear_damping(mut self, c: Scalar) -> Self {
+        self.linear_damping = c;
+        self
+    }
+
+    /// Sets the angular damping (1/s), in the same range, acting on the
+    /// angular velocity the same way.
+    #[must_use]
+    pub fn angular_damping(mut self, c: Scalar) -> Self {
+        self.angular_damping = c;
+        self
+    }
+
+    /// Sets the gravity scale, in ±[`MAX_GRAVITY_SCALE`](crate::limits::MAX_GRAVITY_SCALE)
+    /// (default 1): the built-in [`GravityForceGenerator`](crate::GravityForceGenerator)
+    /// and [`GravityToPointForceGenerator`](crate::GravityToPointForceGenerator)
+    /// multiply their acceleration by it (0 floats, −1 falls up). Other
+    /// generators ignore it; a game's own can read [`Body::gravity_scale`](crate::Body::gravity_scale).
+    #[must_use]
+    pub fn gravity_scale(mut self, scale: Scalar) -> Self {
+        self.gravity_scale = scale;
+        self
+    }
+
+    /// Sets Box2D's collision filter (see [`CollisionFilter`]).
+    #[must_use]
+    pub fn filter(mut self, filter: CollisionFilter) -> Self {
+        self.filter = filter;
         self
     }
 }

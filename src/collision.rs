@@ -84,11 +84,14 @@ impl BroadPhase<'_> {
     }
 }
 
-/// True when the manual's filter lets two bodies collide: at least one dynamic
-/// body (both infinite-mass bodies ⇒ skip) and no shared collision-group bit.
+/// True when the filters let two bodies collide: at least one dynamic body
+/// (both infinite-mass bodies ⇒ skip), no shared collision-group bit (the
+/// manual's rule, a veto), and Box2D's category/mask/group rule
+/// ([`CollisionFilter::accepts`](crate::CollisionFilter::accepts)).
 pub(crate) fn should_collide(a: &Body, b: &Body) -> bool {
     (a.body_type == BodyType::Dynamic || b.body_type == BodyType::Dynamic)
         && (a.collision_groups & b.collision_groups) == 0
+        && a.filter.accepts(&b.filter)
 }
 
 /// What the broad phase found.

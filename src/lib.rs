@@ -133,6 +133,7 @@
 //! | mass | 0.001 – 100,000 kg ([`geometry::mass`]); ignored (all zeros) for static and kinematic bodies | momentum ≤ 2e8 |
 //! | moment of inertia | 1e-6 – 1e6 kg·m² ([`geometry::mass::MAX_INERTIA`]): a circle's is m·r²/2, a w × h box's m·(w² + h²)/12, so a 128 m circle weighs ≤ 122 kg, a 1 cm circle ≥ 20 g | angular momentum ≤ 2.6e8 at 256 rad/s; 1/inertia ≤ 1e6 |
 //! | friction, restitution | 0 – 100 ([`limits::MAX_FRICTION`]), 0 – 1; bodies and arbiters alike | friction bound μ·λn |
+//! | body damping, gravity scale | 0 – 1,024 /s ([`limits::MAX_BODY_DAMPING`]); ±16 ([`limits::MAX_GRAVITY_SCALE`]), the scaled acceleration clamped to ±16,384 m/s² | damping factor exact; forces in range |
 //! | joints | lengths ≤ 1,024 m, stiffness ≤ 1e6 N/m, damping ≤ 1e5 N·s/m, motor speed ≤ ±512 rad/s ([`limits`]) | spring forces exact; explicit springs stable |
 //! | force generators | ±16,384 m/s² per component ([`limits::MAX_ACCELERATION`]), ±1.6e9 N ([`limits::MAX_FORCE`]), points within ±2^20 m | momentum after forces in range |
 //! | arbiter persistence | 0 – 256 steps ([`limits::MAX_ARBITER_PERSISTENCE`]) | separated arbiters expire |
@@ -150,7 +151,9 @@
 //! | `b2_staticBody` / `b2_kinematicBody` / `b2_dynamicBody` | `cpBodyNewStatic` / kinematic / dynamic | [`BodyType`] |
 //! | `b2BodyDef::isBullet`, continuous collision | — | [`BodyDef::bullet`]; fast bodies are always swept against static and kinematic bodies ([`continuous`]) |
 //! | gravity in the world def | `cpSpaceSetGravity` | a [`GravityForceGenerator`] (the manual's force generators) |
-//! | `b2Filter` categories / masks | `cpShapeFilter` groups | collision groups (shared bit ⇒ no collision) and collision levels (select handlers) |
+//! | `b2Filter` categories / masks / group index | `cpShapeFilter` groups | [`CollisionFilter`] on every body ([`BodyDef::filter`], Box2D's rule), vetoed by the manual's collision groups (shared bit ⇒ no collision); collision levels select handlers; [`QueryFilter`] with category, mask and an excluded body |
+//! | `b2BodyDef::fixedRotation`, `linearDamping`, `angularDamping`, `gravityScale` | `cpBodySetMoment(INFINITY)`, `cpSpaceSetDamping` | [`BodyDef::fixed_rotation`], [`BodyDef::linear_damping`], [`BodyDef::angular_damping`], [`BodyDef::gravity_scale`] (read by the gravity generators); `World::set_*` to change them |
+//! | `b2Body_SetType`, `b2Body_SetMassData`, `b2Body_SetTargetTransform` | `cpBodySetType`, `cpBodySetMass` | [`World::set_static`] / [`World::set_kinematic`] / [`World::set_dynamic`], [`World::set_mass`], [`World::set_target_transform`] |
 //! | `b2PreSolveFcn`, begin/end touch events | `cpCollisionHandler` begin / preSolve / postSolve / separate | [`CollisionHandler`] per level pair, [`FnHandler`] |
 //! | `cpSpaceAddPostStepCallback` | same | [`CallbackContext::add_post_step_callback`] |
 //! | `b2RevoluteJoint`, `b2WeldJoint`, `b2DistanceJoint`, motor, limits, springs | `cpPivotJoint`, `cpDampedSpring`, `cpSlideJoint`… | [`JointKind`]: `Pivot` (limits, motor), `Weld`, `Rod`, `Rope`, `Spring`, `DampedSpring`; breakable |
@@ -203,7 +206,7 @@ pub mod world;
 
 pub use arbiter::{Arbiter, ArbiterState, ContactPoint};
 pub use arena::{Handle, Slot};
-pub use body::{Body, BodyDef, BodyHandle, BodyType, MassSpec, PathHandle, Shape};
+pub use body::{Body, BodyDef, BodyHandle, BodyType, CollisionFilter, MassSpec, PathHandle, Shape};
 pub use collision::Index;
 pub use constraint::{
     Constraint, ConstraintHandle, Joint, JointDef, JointHandle, JointKind, MaxTorque, Motor,

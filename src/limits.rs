@@ -116,6 +116,32 @@ pub const MAX_JOINT_LENGTH: Scalar = Scalar::from_int(1024);
 /// the highest spin limit; a faster target could never be reached.
 pub const MAX_MOTOR_SPEED: Scalar = Scalar::from_int(512);
 
+/// Largest linear or angular damping of a body, 1/s
+/// ([`BodyDef::linear_damping`](crate::BodyDef::linear_damping)).
+///
+/// Damping scales a velocity by 1 / (1 + h·c) each sub-step; with the longest
+/// sub-step (0.25 s) h·c ≤ 256 stays exact and the factor ≥ 1/257 stays far
+/// above Q32.32's resolution. A damping of 1,024 /s already stops a body within
+/// a few milliseconds, so a larger one is never useful.
+pub const MAX_BODY_DAMPING: Scalar = Scalar::from_int(1024);
+
+/// Largest |gravity scale| of a body
+/// ([`BodyDef::gravity_scale`](crate::BodyDef::gravity_scale)): 16. The gravity
+/// generators clamp the scaled acceleration to ±[`MAX_ACCELERATION`] per
+/// component, so a scale never takes a step outside the range that limit keeps.
+pub const MAX_GRAVITY_SCALE: Scalar = Scalar::from_int(16);
+
+/// A body's linear or angular damping: [0, [`MAX_BODY_DAMPING`]] (bodies, restore).
+pub(crate) fn check_damping(c: Scalar) -> Result<(), Error> {
+    check_range(c, ZERO, MAX_BODY_DAMPING, "damping")
+}
+
+/// A body's gravity scale: [−[`MAX_GRAVITY_SCALE`], [`MAX_GRAVITY_SCALE`]]
+/// (bodies, restore).
+pub(crate) fn check_gravity_scale(s: Scalar) -> Result<(), Error> {
+    check_range(s, -MAX_GRAVITY_SCALE, MAX_GRAVITY_SCALE, "gravity scale")
+}
+
 /// `Ok` when `lo ≤ v ≤ hi`, else [`Error::OutOfRange`] naming `what`: the one
 /// range check every constructor, setter and `restore` calls.
 pub(crate) fn check_range(v: Scalar, lo: Scalar, hi: Scalar, what: &'static str) -> Result<(), Error> {

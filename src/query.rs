@@ -1,6 +1,7 @@
 //! World queries: ray casts, point, box and shape overlap queries.
 //!
-//! Every query takes a [`QueryFilter`] (collision groups, static bodies) and
+//! Every query takes a [`QueryFilter`] (collision groups, Box2D's category and
+//! mask, a body to exclude, static bodies) and
 //! writes its results into a caller-owned slice, so none allocates. Results come
 //! in body-slot order, except all-hits ray casts, which come nearest first (ties
 //! by slot). Each body's bounding box is tested before its shape. Queries see
@@ -16,18 +17,83 @@ use crate::math::{Rect, Transform, Vector2};
 use crate::world::World;
 
 /// Which bodies a query sees.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+///
+/// A body is seen when it shares no collision-group bit with `groups`, its
+/// category is in `mask_bits` (`body.category_bits & mask_bits != 0`), it is
+/// not `exclude`, and it is not static when `skip_static` is set. The query's
+/// own `category_bits` must be in the body's mask too (Box2D's rule, so a
+/// body that masks out a category is invisible to queries of that category).
+/// The default sees every body: build it with the methods or
+/// `QueryFilter { mask_bits: 0b10, ..QueryFilter::default() }`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct QueryFilter {
     /// Group bits of the query: bodies sharing any bit are skipped (the same
     /// rule as collisions). 0 sees every body.
     pub groups: u32,
     /// Skip static bodies.
     pub skip_static: bool,
+    /// The query's categories, tested against each body's mask (default all).
+    pub category_bits: u64,
+    /// The body categories the query sees (default all).
+    pub mask_bits: u64,
+    /// A body the query never reports, e.g. the player casting the ray.
+    pub exclude: Option<BodyHandle>,
+}
+
+impl Default for QueryFilter {
+    fn default() -> Self {
+        Self { groups: 0, skip_static: false, category_bits: u64::MAX, mask_bits: u64::MAX, exclude: None }
+    }
 }
 
 impl QueryFilter {
-    fn accepts(&self, b: &Body) -> bool {
-        (self.groups & b.collision_groups) == 0 && !(self.skip_static && b.is_static())
+    /// A filter that sees every body.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The same filter seeing only bodies whose category is in `mask`.
+    #[must_use]
+    pub fn mask(mut self, mask: u64) -> Self {
+        self.mask_bits = mask;
+        self
+    }
+
+    /// The same filter with the query's own categories.
+    #[must_use]
+    pub fn category(mut self, category: u64) -> Self {
+        self.category_bits = category;
+        self
+    }
+
+    /// The same filter never reporting `body`.
+    #[must_use]
+    pub fn exclude(mut self, body: BodyHandle) -> Self {
+        self.exclude = Some(body);
+        self
+    }
+
+    /// The same filter skipping bodies that share a collision-group bit with `groups`.
+    #[must_use]
+    pub fn groups(mut self, groups: u32) -> Self {
+        self.groups = groups;
+        self
+    }
+
+    /// The same filter skipping static bodies, or not.
+    #[must_use]
+    pub fn skip_static(mut self, on: bool) -> Self {
+        self.skip_static = on;
+        self
+    }
+
+    fn accepts(&self, h: BodyHandle, b: &Body) -> bool {
+        (self.groups & b.collision_groups) == 0
+            && !(self.skip_static && b.is_static())
+            && (self.mask_bits & b.filter.category_bits) != 0
+            && (self.category_bits & b.filter.mask_bits) != 0
+            && self.exclude != Some(h)
     }
 }
 
@@ -80,7 +146,7 @@ impl<'a> World<'a> {
         let (dir, length) = Self::ray(from, to)?;
         let span = Rect::from_corners(from, to);
         Ok(self.bodies.iter().filter_map(move |(h, b)| {
-            if !filter.accepts(b) || !b.aabb.overlaps(span) {
+            if !filter.accepts(h, b) || !b.aabb.overlaps(span) {
                 return None;
             }
             let (t, normal) = self.ray_body(b, from, dir, length)?;
@@ -138,8 +204,8 @@ impl<'a> World<'a> {
     /// Bodies containing `point`, in slot order, into `out`; returns how many
     /// there are (possibly more than `out` holds).
     pub fn query_point(&self, point: Vector2, filter: QueryFilter, out: &mut [BodyHandle]) -> usize {
-        let found = self.bodies.iter().filter(|(_, b)| {
-            filter.accepts(b)
+        let found = self.bodies.iter().filter(|(h, b)| {
+            filter.accepts(*h, b)
                 && b.aabb.contains(point)
                 && match b.shape {
                     Shape::Circle { radius } => {
@@ -168,7 +234,7 @@ impl<'a> World<'a> {
         if area.min.x > area.max.x || area.min.y > area.max.y {
             return Err(Error::OutOfRange { what: "query box" });
         }
-        let found = self.bodies.iter().filter(|(_, b)| filter.accepts(b) && b.aabb.overlaps(area));
+        let found = self.bodies.iter().filter(|(h, b)| filter.accepts(*h, b) && b.aabb.overlaps(area));
         Ok(collect(found.map(|(h, _)| h), out))
     }
 
@@ -190,8 +256,8 @@ impl<'a> World<'a> {
             QueryShape::Polygon(p) => p.radius(),
         };
         let area = Rect::from_center(xf.p, Vector2::new(reach, reach));
-        let found = self.bodies.iter().filter(|(_, b)| {
-            if !filter.accepts(b) || !b.aabb.overlaps(area) {
+        let found = self.bodies.iter().filter(|(h, b)| {
+            if !filter.accepts(*h, b) || !b.aabb.overlaps(area) {
                 return false;
             }
             let m = match (shape, b.shape) {

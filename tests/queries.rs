@@ -2,8 +2,8 @@
 
 use arphysics::geometry::PolygonPath;
 use arphysics::{
-    BodyDef, BodyHandle, Capacities, Error, QueryFilter, QueryShape, RayHit, Rect, Rot, Scalar, Transform,
-    Vector2, World, WorldDef,
+    BodyDef, BodyHandle, Capacities, CollisionFilter, Error, QueryFilter, QueryShape, RayHit, Rect, Rot,
+    Scalar, Transform, Vector2, World, WorldDef,
 };
 use proptest::prelude::*;
 
@@ -173,7 +173,7 @@ proptest! {
             prop_assert!((hit.fraction.to_num::<f64>() - frac).abs() < 1e-6);
         }
         // Groups: bodies sharing bit 1 (every fifth) are skipped.
-        let filtered = QueryFilter { groups: 0b10, skip_static: false };
+        let filtered = QueryFilter { groups: 0b10, ..QueryFilter::default() };
         let n2 = w.ray_cast_all(fx, tx, filtered, &mut out).expect("ray");
         prop_assert_eq!(n2, expected.iter().filter(|(_, i)| i % 5 != 4).count());
     }
@@ -253,4 +253,59 @@ fn bad_queries_are_clear_errors() {
     assert_eq!(w.ray_cast(v(0.0, 0.0), v(5.0, 0.0), QueryFilter::default()), Ok(None));
     let hit = w.ray_cast(v(-5.0, 0.0), v(5.0, 0.0), QueryFilter::default()).expect("ray").expect("hit");
     assert!((hit.fraction - s(0.4)).abs() < s(1e-9) && hit.normal == v(-1.0, 0.0));
+}
+
+/// Category, mask and an excluded body, honoured by every query alike: three
+/// circles of radius 1 on the x axis (categories 1, 2 and 4; the third masks
+/// out category 8), and a player at the origin casting through them.
+#[test]
+fn queries_honour_category_mask_and_an_excluded_body() {
+    let bounds = Rect::from_corners(v(-100.0, -100.0), v(100.0, 100.0));
+    let mut w =
+        World::with_capacities(WorldDef::with_bounds(bounds), Capacities::for_bodies(8)).expect("world");
+    let filter =
+        |category, mask| CollisionFilter { category_bits: category, mask_bits: mask, group_index: 0 };
+    let player = w.add_body(BodyDef::circle(s(1.0)).static_body().filter(filter(1, u64::MAX))).expect("b");
+    let coin = w
+        .add_body(BodyDef::circle(s(1.0)).static_body().position(v(5.0, 0.0)).filter(filter(2, u64::MAX)))
+        .expect("b");
+    let wall = w
+        .add_body(BodyDef::circle(s(1.0)).static_body().position(v(10.0, 0.0)).filter(filter(4, !8)))
+        .expect("b");
+    let all = QueryFilter::default();
+    let (from, to) = (v(0.0, 0.0), v(20.0, 0.0));
+    // A ray from behind the player, through all three.
+    let hit = |f: QueryFilter| w.ray_cast(v(-5.0, 0.0), to, f).expect("ray").map(|h| h.body);
+    assert_eq!(hit(all), Some(player));
+    assert_eq!(hit(all.exclude(player)), Some(coin), "the excluded body is skipped");
+    assert_eq!(hit(all.exclude(player).mask(!2)), Some(wall), "coins masked out");
+    assert_eq!(hit(all.mask(4)), Some(wall));
+    assert_eq!(hit(all.mask(4).category(8)), None, "the wall masks out category 8");
+    assert_eq!(hit(all.mask(0)), None);
+    let mut hits = [RayHit {
+        body: BodyHandle::NULL,
+        point: Vector2::ZERO,
+        normal: Vector2::ZERO,
+        fraction: Scalar::ZERO,
+    }; 4];
+    assert_eq!(w.ray_cast_all(from, to, all.exclude(coin), &mut hits).expect("ray"), 1);
+    assert_eq!(hits[0].body, wall);
+    // Point, box and shape queries.
+    let mut out = [BodyHandle::NULL; 4];
+    assert_eq!(w.query_point(v(5.0, 0.0), all, &mut out), 1);
+    assert_eq!(w.query_point(v(5.0, 0.0), all.exclude(coin), &mut out), 0);
+    assert_eq!(w.query_point(v(5.0, 0.0), all.mask(1 | 4), &mut out), 0);
+    let area = Rect::from_corners(v(-2.0, -2.0), v(12.0, 2.0));
+    assert_eq!(w.query_aabb(area, all, &mut out).expect("q"), 3);
+    let n = w.query_aabb(area, all.mask(2 | 4).category(8), &mut out).expect("q");
+    assert_eq!(&out[..n], &[coin], "the wall refuses category 8, the player is not in the mask");
+    let n = w.query_aabb(area, all.exclude(wall), &mut out).expect("q");
+    assert_eq!(&out[..n], &[player, coin]);
+    let xf = Transform::new(v(7.5, 0.0), Rot::IDENTITY);
+    let n = w.query_shape(QueryShape::Circle(s(2.0)), xf, all, &mut out).expect("q");
+    assert_eq!(&out[..n], &[coin, wall]);
+    let n = w.query_shape(QueryShape::Circle(s(2.0)), xf, all.exclude(coin), &mut out).expect("q");
+    assert_eq!(&out[..n], &[wall]);
+    let n = w.query_shape(QueryShape::Circle(s(2.0)), xf, all.mask(2), &mut out).expect("q");
+    assert_eq!(&out[..n], &[coin]);
 }

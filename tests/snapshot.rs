@@ -159,8 +159,9 @@ fn snapshot_size_per_body_and_per_arbiter() {
     let arbiters = w.arbiters().count();
     println!("snapshot: {len} bytes for {bodies} bodies, {arbiters} arbiters, {} joints", w.joints().count());
     println!(
-        "per body {} bytes (+58 per distinct run of properties), per arbiter {} bytes",
+        "per body {} bytes (+{} per distinct run of properties), per arbiter {} bytes",
         arphysics::snapshot::BODY_RECORD,
+        arphysics::snapshot::PROPS_RECORD,
         arphysics::snapshot::ARBITER_RECORD
     );
     const { assert!(arphysics::snapshot::BODY_RECORD <= 64 && arphysics::snapshot::ARBITER_RECORD <= 64) };
@@ -177,7 +178,8 @@ fn snapshot_size_per_body_and_per_arbiter() {
     }
     let empty =
         World::with_capacities(WorldDef::with_bounds(bounds), Capacities::for_bodies(300)).expect("w");
-    let per_body = (p.snapshot_len() - empty.snapshot_len() - 58) as f64 / 200.0;
+    let per_body =
+        (p.snapshot_len() - empty.snapshot_len() - arphysics::snapshot::PROPS_RECORD) as f64 / 200.0;
     println!("200 identical boxes: {per_body} bytes per body");
     assert!(per_body <= 64.0, "{per_body}");
 }

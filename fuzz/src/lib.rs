@@ -15,6 +15,7 @@ use arphysics::constraint::Constraint;
 use arphysics::force::Targets;
 use arphysics::index::SortAndSweepIndex;
 use arphysics::query::{QueryFilter, QueryShape, RayHit};
+use arphysics::CollisionFilter;
 use arphysics::{
     Arbiter, Body, BodyDef, BodyHandle, BodyType, CallbackContext, Capacities, ConstraintHandle, Error,
     FnHandler, ForceGenerator, Generator, GeneratorHandle, GeneratorMut, GravityForceGenerator,
@@ -442,6 +443,29 @@ impl BodySpec {
             .bullet(self.collision_groups & 0x80 != 0)
             .collision_level(u32::from(self.collision_level % 4))
             .user_data(self.user_data)
+            .fixed_rotation(self.user_data >> 63 != 0)
+            .linear_damping(quarter(self.user_data >> 56))
+            .angular_damping(quarter(self.user_data >> 52))
+            .gravity_scale(quarter(self.user_data >> 48) - Scalar::from_num(2))
+            .filter(filter_from(self.user_data >> 40))
+    }
+}
+
+/// The low 4 bits of `bits` in quarters: 0 to 3.75 (the body options'
+/// damping and, shifted by −2, gravity scale; taken from the user data word,
+/// which the engine never reads, so earlier inputs keep their shape).
+fn quarter(bits: u64) -> Scalar {
+    Scalar::from_num((bits & 0xf) as i32) / Scalar::from_num(4)
+}
+
+/// A collision filter from 6 bits: one of four categories, a mask without
+/// one of four, and a group index of −1, 0, 0 or 1, so that some pairs are
+/// filtered each way.
+fn filter_from(bits: u64) -> CollisionFilter {
+    CollisionFilter {
+        category_bits: 1 << (bits & 3),
+        mask_bits: !(1 << ((bits >> 2) & 3)),
+        group_index: [-1, 0, 0, 1][((bits >> 4) & 3) as usize],
     }
 }
 
@@ -650,7 +674,11 @@ pub struct Filter {
 
 impl Filter {
     fn get(self) -> QueryFilter {
-        QueryFilter { groups: u32::from(self.groups & 0x0f), skip_static: self.skip_static }
+        QueryFilter {
+            groups: u32::from(self.groups & 0x0f),
+            skip_static: self.skip_static,
+            ..QueryFilter::default()
+        }
     }
 }
 

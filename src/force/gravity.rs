@@ -7,7 +7,9 @@ use crate::limits::{check_components, MAX_ACCELERATION};
 use crate::math::{Scalar, Vector2};
 
 /// Uniform gravity: the force is scaled by each body's mass, so every body gets
-/// the same acceleration `g` (m/s²): Δv = g · dt.
+/// the same acceleration `g` (m/s²): Δv = g · dt, times the body's
+/// [gravity scale](crate::BodyDef::gravity_scale) (the scaled acceleration
+/// clamped to ±[`MAX_ACCELERATION`] per component).
 ///
 /// Each component of `g` is within ±[`MAX_ACCELERATION`] (16,384 m/s²), checked
 /// by [`World::add_force_generator`](crate::World::add_force_generator), by
@@ -79,6 +81,7 @@ impl ForceGenerator for GravityForceGenerator {
 
     #[inline]
     fn apply(&mut self, _: BodyHandle, body: &mut Body, dt: Scalar) {
-        body.add_linear_velocity(self.gravity * dt);
+        let g = super::scaled_acceleration(self.gravity, body.gravity_scale());
+        body.add_linear_velocity(g * dt);
     }
 }

@@ -7,8 +7,10 @@ use crate::limits::{check_components, check_range, MAX_ACCELERATION, MAX_COORDIN
 use crate::math::{Scalar, Vector2};
 
 /// Accelerates bodies towards `point` at `acceleration` m/s², whatever their
-/// mass or distance (a planet in a small game, a vortex, a tractor beam). A body
-/// exactly at the point has no direction and is left alone.
+/// mass or distance (a planet in a small game, a vortex, a tractor beam), times
+/// the body's [gravity scale](crate::BodyDef::gravity_scale) (the scaled
+/// acceleration clamped to ±[`MAX_ACCELERATION`]). A body exactly at the point
+/// has no direction and is left alone.
 ///
 /// The point's coordinates are within ±[`MAX_COORDINATE`] (2^20 m, so its
 /// distance to any body stays exact) and the acceleration within
@@ -106,6 +108,11 @@ impl ForceGenerator for GravityToPointForceGenerator {
     fn apply(&mut self, _: BodyHandle, body: &mut Body, dt: Scalar) {
         // `normalize` scales before squaring, so any distance within the world is safe.
         let dir = (self.point - body.position()).normalize();
-        body.add_linear_velocity(dir * (self.acceleration * dt));
+        let a = if body.gravity_scale() == Scalar::ONE {
+            self.acceleration
+        } else {
+            (self.acceleration * body.gravity_scale()).clamp(-MAX_ACCELERATION, MAX_ACCELERATION)
+        };
+        body.add_linear_velocity(dir * (a * dt));
     }
 }

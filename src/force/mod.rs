@@ -164,6 +164,20 @@ fn single_pass<G: ForceGenerator>(g: &mut G, bodies: &mut Arena<'_, Body>, dt: S
     }
 }
 
+/// The gravity generators' acceleration `g` times a body's gravity scale, each
+/// component clamped to ±[`MAX_ACCELERATION`](crate::limits::MAX_ACCELERATION)
+/// (`g` itself when the scale is 1, the same bits as before scales existed).
+#[inline]
+pub(crate) fn scaled_acceleration(g: Vector2, scale: Scalar) -> Vector2 {
+    use crate::limits::MAX_ACCELERATION as A;
+    if scale == Scalar::ONE {
+        g
+    } else {
+        let s = g * scale;
+        Vector2::new(s.x.clamp(-A, A), s.y.clamp(-A, A))
+    }
+}
+
 /// No generator: every body's velocity change is zero.
 struct NoForce;
 

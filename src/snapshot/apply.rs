@@ -137,6 +137,11 @@ fn body_from(p: &Props, r: &BodyRecord, recips: &mut Recips) -> Body {
     b.collision_level = p.level;
     b.user_data = p.user_data;
     b.bullet = p.bullet;
+    b.fixed_rotation = p.fixed_rotation;
+    b.linear_damping = p.linear_damping;
+    b.angular_damping = p.angular_damping;
+    b.gravity_scale = p.gravity_scale;
+    b.filter = p.filter;
     b.out_of_bounds = r.out_of_bounds();
     b
 }

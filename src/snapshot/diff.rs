@@ -100,6 +100,12 @@ pub fn diff(a: &[u8], b: &[u8]) -> Result<Option<Difference>, Error> {
             (pa.groups != pb.groups, "collision groups"),
             (pa.level != pb.level, "collision level"),
             (pa.user_data != pb.user_data, "user data"),
+            (pa.bullet != pb.bullet, "bullet"),
+            (pa.fixed_rotation != pb.fixed_rotation, "fixed rotation"),
+            (pa.linear_damping != pb.linear_damping, "linear damping"),
+            (pa.angular_damping != pb.angular_damping, "angular damping"),
+            (pa.gravity_scale != pb.gravity_scale, "gravity scale"),
+            (pa.filter != pb.filter, "collision filter"),
         ];
         if let Some((_, field)) = fields.iter().find(|(differs, _)| *differs) {
             return found(object, field);

@@ -13,10 +13,10 @@
 use super::cursor::Cursor;
 use super::write::Props;
 use super::{
-    checksum, invalid, ARBITER_RECORD, BODY_RECORD, BULLET, HEADER, JOINT_RECORD, LINK_MASK, LIVE, MAGIC,
-    OUT_OF_BOUNDS, PROPS_RECORD, TRAILER, VERSION,
+    checksum, invalid, ARBITER_RECORD, BODY_RECORD, BULLET, FIXED_ROTATION, HEADER, JOINT_RECORD, LINK_MASK,
+    LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD, TRAILER, VERSION,
 };
-use crate::body::{BodyHandle, BodyType, Shape};
+use crate::body::{BodyHandle, BodyType, CollisionFilter, Shape};
 use crate::constraint::{Joint, JointDef, JointKind, MaxTorque, Motor};
 use crate::error::Error;
 use crate::force::{
@@ -187,7 +187,7 @@ impl<'b> Layout<'b> {
             _ => return Err(invalid("unknown shape")),
         };
         let kind = c.u8()?;
-        let body_type = match kind & !BULLET {
+        let body_type = match kind & !(BULLET | FIXED_ROTATION) {
             0 => BodyType::Static,
             1 => BodyType::Kinematic,
             2 => BodyType::Dynamic,
@@ -204,6 +204,15 @@ impl<'b> Layout<'b> {
             level: c.u32()?,
             user_data: c.u64()?,
             bullet: kind & BULLET != 0,
+            fixed_rotation: kind & FIXED_ROTATION != 0,
+            linear_damping: c.scalar()?,
+            angular_damping: c.scalar()?,
+            gravity_scale: c.scalar()?,
+            filter: CollisionFilter {
+                category_bits: c.u64()?,
+                mask_bits: c.u64()?,
+                group_index: c.u32()? as i32,
+            },
         })
     }
 

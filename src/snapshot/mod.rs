@@ -9,12 +9,15 @@
 //! endianness or pointer width, nor on the world's capacities. Integers are their
 //! little-endian bytes; a `Scalar` is its raw 64-bit two's-complement bits.
 //!
-//! Layout (format [`VERSION`] 2), in order:
+//! Layout (format [`VERSION`] 3), in order:
 //! 1. framing, [`HEADER`] = 16 bytes: `ARPS`, the version (u32), and the
 //!    snapshot's total length in bytes (u64, trailer included);
 //! 2. the world: step count, world settings, a checksum of the polygon paths;
-//! 3. the table of body properties (shape, type and bullet flag, mass, material, groups, level,
-//!    user data: 58 bytes per run of consecutive bodies that share them);
+//! 3. the table of body properties (shape; type with the bullet and
+//!    fixed-rotation flags; mass, inertia, friction, restitution, groups,
+//!    level, user data; linear and angular damping, gravity scale; filter
+//!    category, mask and group index: 102 bytes per run of consecutive bodies
+//!    that share them);
 //! 4. the body allocator and one 64-byte record per body slot (generation,
 //!    free-list link or flags and properties index, position, rotation,
 //!    velocities);
@@ -27,7 +30,7 @@
 //!    byte before it.
 //!
 //! Fixed-size records let `restore` check a buffer completely (free lists
-//! included) before it changes anything. A live body costs 64 bytes, plus 58 for
+//! included) before it changes anything. A live body costs 64 bytes, plus 102 for
 //! its properties unless it shares them with the body before it (a pyramid's
 //! boxes do); an arbiter 58 bytes.
 //!
@@ -79,8 +82,9 @@ use crate::world::World;
 use hash::{Hash64, PartsHasher};
 
 /// Snapshot format version written by this build (2: length in the header,
-/// XXH64 checksum trailer).
-pub const VERSION: u32 = 2;
+/// XXH64 checksum trailer; 3: the body options and filter in the properties
+/// record).
+pub const VERSION: u32 = 3;
 const MAGIC: &[u8; 4] = b"ARPS";
 /// Bytes of the framing that opens a snapshot: `ARPS`, the version (u32) and the
 /// snapshot's total length in bytes (u64), trailer included.
@@ -91,15 +95,31 @@ pub const TRAILER: usize = 8;
 /// Bytes of one body record.
 pub const BODY_RECORD: usize = 64;
 /// Bytes of one body-properties record.
-pub const PROPS_RECORD: usize = 58;
+///
+/// | offset | bytes | field |
+/// |---|---|---|
+/// | 0 | 1 | shape kind (0 circle, 1 polygon) |
+/// | 1 | 8 | circle radius, or the path handle (index u32, generation u32) |
+/// | 9 | 1 | body type and flags (see below) |
+/// | 10 | 8 × 4 | mass, inertia, friction, restitution |
+/// | 42 | 4 + 4 | collision groups, collision level |
+/// | 50 | 8 | user data |
+/// | 58 | 8 × 3 | linear damping, angular damping, gravity scale |
+/// | 82 | 8 + 8 | filter category bits, mask bits |
+/// | 98 | 4 | filter group index (i32) |
+pub const PROPS_RECORD: usize = 102;
 /// Bytes of one arbiter record.
 pub const ARBITER_RECORD: usize = 58;
 /// Bytes of one joint record.
 pub const JOINT_RECORD: usize = 160;
 
 /// The body-type byte of a properties record: bits 0–1 the type (0 static,
-/// 1 kinematic, 2 dynamic), bit 4 the bullet flag; the other bits are zero.
+/// 1 kinematic, 2 dynamic), bit 4 (0x10) the bullet flag, bit 6 (0x40) the
+/// fixed-rotation flag; bit 5 (0x20) is reserved for the sensor flag; the
+/// other bits are zero.
 const BULLET: u8 = 1 << 4;
+/// The fixed-rotation flag of the body-type byte.
+const FIXED_ROTATION: u8 = 1 << 6;
 /// The link field of a body record: bit 31 live, bit 30 out of bounds, bits 0–29
 /// the free-list successor (free slot) or the properties index (live slot).
 const LIVE: u32 = 1 << 31;

@@ -16,7 +16,7 @@ use crate::error::Error;
 use crate::force::{Generator, Targets};
 use crate::geometry::circle::MAX_CIRCLE_RADIUS;
 use crate::geometry::mass::{MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};
-use crate::limits::{check_friction, check_restitution};
+use crate::limits::{check_damping, check_friction, check_gravity_scale, check_restitution};
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::world::{World, MAX_COORDINATE};
 
@@ -76,6 +76,10 @@ fn check_props(w: &World<'_>, p: &Props) -> Result<(), Error> {
     check_friction(p.friction)
         .and(check_restitution(p.restitution))
         .map_err(|_| invalid("material out of range"))?;
+    check_damping(p.linear_damping)
+        .and(check_damping(p.angular_damping))
+        .map_err(|_| invalid("damping out of range"))?;
+    check_gravity_scale(p.gravity_scale).map_err(|_| invalid("gravity scale out of range"))?;
     Ok(())
 }
 

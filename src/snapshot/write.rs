@@ -2,11 +2,11 @@
 
 use super::hash::Hash64;
 use super::{
-    Part, Sink, ARBITER_RECORD, BODY_RECORD, BULLET, HEADER, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, NO_LINK,
-    OUT_OF_BOUNDS, PROPS_RECORD, TRAILER, VERSION,
+    Part, Sink, ARBITER_RECORD, BODY_RECORD, BULLET, FIXED_ROTATION, HEADER, JOINT_RECORD, LINK_MASK, LIVE,
+    MAGIC, NO_LINK, OUT_OF_BOUNDS, PROPS_RECORD, TRAILER, VERSION,
 };
 use crate::arena::NO_SLOT;
-use crate::body::{Body, BodyType, Shape};
+use crate::body::{Body, BodyType, CollisionFilter, Shape};
 use crate::constraint::{Joint, JointKind, MaxTorque};
 use crate::force::{Generator, Targets, MAX_TARGETS};
 use crate::geometry::PolygonPath;
@@ -26,6 +26,11 @@ pub(super) struct Props {
     pub(super) level: u32,
     pub(super) user_data: u64,
     pub(super) bullet: bool,
+    pub(super) fixed_rotation: bool,
+    pub(super) linear_damping: Scalar,
+    pub(super) angular_damping: Scalar,
+    pub(super) gravity_scale: Scalar,
+    pub(super) filter: CollisionFilter,
 }
 
 impl Props {
@@ -41,6 +46,11 @@ impl Props {
             level: b.collision_level,
             user_data: b.user_data,
             bullet: b.bullet,
+            fixed_rotation: b.fixed_rotation,
+            linear_damping: b.linear_damping,
+            angular_damping: b.angular_damping,
+            gravity_scale: b.gravity_scale,
+            filter: b.filter,
         }
     }
 }
@@ -319,7 +329,8 @@ fn write_props(s: &mut impl Sink, p: &Props) {
             s.u32(h.generation());
         }
     }
-    s.u8(p.body_type as u8 | if p.bullet { BULLET } else { 0 });
+    let fixed = if p.fixed_rotation { FIXED_ROTATION } else { 0 };
+    s.u8(p.body_type as u8 | if p.bullet { BULLET } else { 0 } | fixed);
     s.scalar(p.mass);
     s.scalar(p.inertia);
     s.scalar(p.friction);
@@ -327,6 +338,12 @@ fn write_props(s: &mut impl Sink, p: &Props) {
     s.u32(p.groups);
     s.u32(p.level);
     s.u64(p.user_data);
+    s.scalar(p.linear_damping);
+    s.scalar(p.angular_damping);
+    s.scalar(p.gravity_scale);
+    s.u64(p.filter.category_bits);
+    s.u64(p.filter.mask_bits);
+    s.u32(p.filter.group_index as u32);
 }
 
 fn write_targets(s: &mut impl Sink, t: &Targets) {

@@ -84,6 +84,12 @@ pub struct SolverBody {
     /// ([`MAX_LINEAR_SPEED_LIMIT`](crate::limits::MAX_LINEAR_SPEED_LIMIT) at
     /// the body's radius).
     pub(crate) w_max: Scalar,
+    /// The damping factors 1 / (1 + h·c) of the linear and angular velocity,
+    /// applied each sub-step before the forces (as Box2D does).
+    pub(crate) linear_damping: Scalar,
+    pub(crate) angular_damping: Scalar,
+    /// Damped: a damping factor is not 1 (dynamic bodies only).
+    pub(crate) damped: bool,
     /// Receives the generators' velocity change (dynamic, in bounds).
     pub(crate) forced: bool,
     /// Integrates its position (not static, in bounds).
@@ -113,6 +119,9 @@ impl SolverBody {
         force_dv: Vector2::ZERO,
         force_dw: ZERO,
         w_max: ZERO,
+        linear_damping: Scalar::ONE,
+        angular_damping: Scalar::ONE,
+        damped: false,
         forced: false,
         moves: false,
         dynamic: false,
@@ -120,15 +129,16 @@ impl SolverBody {
         toi: Scalar::ONE,
     };
 
-    /// Loads a body's state; `inv_n` is 1 / sub-steps, `wmax` the step's
-    /// angular speed limit. A frozen (out of bounds) body is loaded as a
-    /// static one: no forces, no impulses, not integrated.
+    /// Loads a body's state; `inv_n` is 1 / sub-steps, `h` the sub-step (s),
+    /// `wmax` the step's angular speed limit. A frozen (out of bounds) body is
+    /// loaded as a static one: no forces, no impulses, not integrated. A
+    /// fixed-rotation body is loaded with no spin and an angular limit of 0,
+    /// which the integration's clamp holds it to.
     #[inline]
-    pub(crate) fn load(b: &Body, inv_n: Scalar, wmax: Scalar, lane: &mut BodyLanes) -> Self {
+    pub(crate) fn load(b: &Body, inv_n: Scalar, h: Scalar, wmax: Scalar, lane: &mut BodyLanes) -> Self {
         let radius = b.radius.max(MIN_RADIUS);
         let inv_radius = radius.recip();
         let dynamic = b.is_dynamic() && !b.out_of_bounds;
-        let rim = lanes::to_scalar(lanes::V_WALL, FV) * inv_radius;
         let mut sb = Self {
             lane_ref: [0; 3],
             colours: 0,
@@ -143,7 +153,11 @@ impl SolverBody {
             inv_radius,
             force_dv: Vector2::ZERO,
             force_dw: ZERO,
-            w_max: wmax.min(rim),
+            // `angular_speed_limit`, reusing the reciprocal of the radius.
+            w_max: if b.fixed_rotation { ZERO } else { wmax.min(rim_limit(inv_radius)) },
+            linear_damping: Scalar::ONE,
+            angular_damping: Scalar::ONE,
+            damped: false,
             forced: dynamic,
             moves: b.moved_by_step(),
             dynamic,
@@ -152,6 +166,15 @@ impl SolverBody {
         };
         if dynamic {
             (sb.force_dv, sb.force_dw) = (b.force_dv * inv_n, b.force_dw * inv_n);
+            if b.linear_damping != ZERO || b.angular_damping != ZERO {
+                // Validated: c ≤ 1,024 /s and h ≤ 0.25 s, so 1 + h·c ≤ 257.
+                sb.linear_damping = (Scalar::ONE + h * b.linear_damping).recip();
+                sb.angular_damping = (Scalar::ONE + h * b.angular_damping).recip();
+                sb.damped = true;
+            }
+        }
+        if b.fixed_rotation {
+            (sb.w, sb.force_dw) = (ZERO, ZERO);
         }
         *lane = BodyLanes::EMPTY;
         sb.push(lane);
@@ -184,10 +207,15 @@ impl SolverBody {
         self.lane_ref = [lane[VX], lane[VY], lane[W]];
     }
 
-    /// Adds this sub-step's share of the forces.
+    /// Damps the velocity and adds this sub-step's share of the forces:
+    /// v ← v / (1 + h·c) + Δv (Box2D's order).
     #[inline]
     pub(crate) fn add_force(&mut self, lane: &mut BodyLanes) {
         self.pull(lane);
+        if self.damped {
+            self.v = self.v * self.linear_damping;
+            self.w *= self.angular_damping;
+        }
         self.v += self.force_dv;
         self.w += self.force_dw;
         self.push(lane);
@@ -250,13 +278,32 @@ impl Default for SolverBody {
 
 /// Inverse mass and inertia a body contributes to a contact or a joint (0
 /// unless dynamic and in bounds: a frozen body is as immovable as a static one,
-/// see [`Body::is_out_of_bounds`]).
+/// see [`Body::is_out_of_bounds`]). A fixed-rotation body's inverse inertia is
+/// 0: nothing can turn it.
 pub(crate) fn inverse_mass(b: &Body) -> (Scalar, Scalar) {
     if b.is_dynamic() && !b.out_of_bounds {
-        (b.mass.inv_mass, b.mass.inv_inertia)
+        (b.mass.inv_mass, if b.fixed_rotation { ZERO } else { b.mass.inv_inertia })
     } else {
         (ZERO, ZERO)
     }
+}
+
+/// The angular speed the solver lets body `b` reach in a step whose limit is
+/// `wmax` (rad/s): `wmax`, and at most the rim speed
+/// [`MAX_LINEAR_SPEED_LIMIT`](crate::limits::MAX_LINEAR_SPEED_LIMIT) at the
+/// body's radius; 0 for a fixed-rotation body.
+pub(crate) fn angular_speed_limit(b: &Body, wmax: Scalar) -> Scalar {
+    if b.fixed_rotation {
+        return ZERO;
+    }
+    wmax.min(rim_limit(b.radius.max(MIN_RADIUS).recip()))
+}
+
+/// The angular speed at which a body's rim, at 1 / `inv_radius` m from its
+/// centre, reaches the lanes' velocity wall (rad/s).
+#[inline]
+fn rim_limit(inv_radius: Scalar) -> Scalar {
+    lanes::to_scalar(lanes::V_WALL, FV) * inv_radius
 }
 
 /// Bodies `i` and `j`, mutably; `None` if they are the same or out of range.

@@ -85,7 +85,7 @@ pub use body::{BodyLanes, SolverBody};
 pub use contact::{ContactConstraint, ContactScratch};
 pub use dispatch::{limit_simd_level, simd_level, SimdLevel};
 
-pub(crate) use body::inverse_mass;
+pub(crate) use body::{angular_speed_limit, inverse_mass};
 use contact::LaneParams;
 pub(crate) use joint_lanes::{JointLanes, JointMasses};
 use managed::ManagedSlice;
@@ -202,7 +202,7 @@ fn load(
     for (i, b) in bodies.iter() {
         let k = i.index() as usize;
         if let (Some(sb), Some(lane)) = (sbodies.get_mut(k), lanes.get_mut(k)) {
-            *sb = SolverBody::load(b, ctx.inv_substeps, ctx.max_angular_speed, lane);
+            *sb = SolverBody::load(b, ctx.inv_substeps, ctx.h, ctx.max_angular_speed, lane);
         }
     }
     let scales = (ctx.contact_softness.mass_scale, ctx.static_softness.mass_scale);

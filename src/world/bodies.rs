@@ -1,12 +1,17 @@
 //! The body and polygon-path API of [`World`]: create, read, move, remove.
 
 use crate::arena::Handle;
-use crate::body::{compute_aabb, Body, BodyDef, BodyHandle, BodyType, MassSpec, PathHandle, Shape};
+use crate::body::{
+    compute_aabb, Body, BodyDef, BodyHandle, BodyType, CollisionFilter, MassSpec, PathHandle, Shape,
+};
 use crate::collision;
 use crate::error::Error;
 use crate::geometry::circle::{circle_area, circle_unit_inertia};
 use crate::geometry::{MassData, PolygonPath};
-use crate::limits::{check_friction, check_restitution, MAX_BODY_RADIUS};
+use crate::limits::{
+    check_damping, check_friction, check_gravity_scale, check_restitution, MAX_BODY_RADIUS, MAX_TIME_STEP,
+    MIN_TIME_STEP,
+};
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rect, Rot, Vector2};
 
@@ -51,7 +56,7 @@ impl World<'_> {
     ///
     /// # Errors
     /// [`Error::OutOfRange`] for a radius, mass, density, friction, restitution,
-    /// speed or rotation outside its range; [`Error::StaleHandle`] for an unknown
+    /// damping, gravity scale, speed or rotation outside its range; [`Error::StaleHandle`] for an unknown
     /// polygon path; [`Error::OutsideBounds`] when the position is outside the
     /// world; [`Error::CapacityFull`] when the body store is full.
     pub fn add_body(&mut self, def: BodyDef) -> Result<BodyHandle, Error> {
@@ -60,21 +65,7 @@ impl World<'_> {
     }
 
     fn build_body(&self, def: &BodyDef) -> Result<Body, Error> {
-        let (area, unit_inertia, radius) = match def.shape {
-            Shape::Circle { radius } => {
-                if radius <= ZERO || radius > MAX_BODY_RADIUS {
-                    return Err(Error::OutOfRange { what: "radius" });
-                }
-                (circle_area(radius)?, circle_unit_inertia(radius)?, radius)
-            }
-            Shape::Polygon(h) => {
-                let p = self.paths.get(h).ok_or(Error::StaleHandle)?;
-                if p.radius() > MAX_BODY_RADIUS {
-                    return Err(Error::OutOfRange { what: "polygon size" });
-                }
-                (p.area(), p.unit_inertia(), p.radius())
-            }
-        };
+        let (area, unit_inertia, radius) = self.shape_geometry(def.shape)?;
         let mut body_type = def.body_type;
         let mass = match (body_type, def.mass) {
             (BodyType::Dynamic, MassSpec::Mass(m)) if m == ZERO => {
@@ -87,13 +78,16 @@ impl World<'_> {
         };
         check_friction(def.friction)?;
         check_restitution(def.restitution)?;
+        check_damping(def.linear_damping)?;
+        check_damping(def.angular_damping)?;
+        check_gravity_scale(def.gravity_scale)?;
         let rotation = normalized_rotation(def.rotation)?;
         if !self.def.bounds.contains(def.position) {
             return Err(Error::OutsideBounds);
         }
         let moving = body_type != BodyType::Static;
         let v = if moving { def.linear_velocity } else { Vector2::ZERO };
-        let w = if moving { def.angular_velocity } else { ZERO };
+        let w = if moving && !def.fixed_rotation { def.angular_velocity } else { ZERO };
         if v.x.abs() > self.def.max_linear_speed
             || v.y.abs() > self.def.max_linear_speed
             || v.length() > self.def.max_linear_speed
@@ -118,6 +112,11 @@ impl World<'_> {
             user_data: def.user_data,
             out_of_bounds: false,
             bullet: def.bullet,
+            fixed_rotation: def.fixed_rotation,
+            linear_damping: def.linear_damping,
+            angular_damping: def.angular_damping,
+            gravity_scale: def.gravity_scale,
+            filter: def.filter,
             radius,
             aabb: Rect::default(),
             force_dv: Vector2::ZERO,
@@ -125,6 +124,26 @@ impl World<'_> {
         };
         body.aabb = compute_aabb(&body, &self.paths);
         Ok(body)
+    }
+
+    /// Area (m²), unit moment of inertia (m⁴, per kg/m²) and bounding radius
+    /// (m) of a shape, checked against the size limits.
+    fn shape_geometry(&self, shape: Shape) -> Result<(Scalar, Scalar, Scalar), Error> {
+        match shape {
+            Shape::Circle { radius } => {
+                if radius <= ZERO || radius > MAX_BODY_RADIUS {
+                    return Err(Error::OutOfRange { what: "radius" });
+                }
+                Ok((circle_area(radius)?, circle_unit_inertia(radius)?, radius))
+            }
+            Shape::Polygon(h) => {
+                let p = self.paths.get(h).ok_or(Error::StaleHandle)?;
+                if p.radius() > MAX_BODY_RADIUS {
+                    return Err(Error::OutOfRange { what: "polygon size" });
+                }
+                Ok((p.area(), p.unit_inertia(), p.radius()))
+            }
+        }
     }
 
     /// Removes a body and returns it. Its arbiters end at once: `end` is called
@@ -256,6 +275,226 @@ impl World<'_> {
         b.mass = MassData::STATIC;
         b.linear_velocity = Vector2::ZERO;
         b.angular_velocity = ZERO;
+        Ok(())
+    }
+
+    /// Makes a body kinematic: moved by its velocity alone, which only the game
+    /// sets (see [`set_target_transform`](World::set_target_transform)). A
+    /// dynamic body keeps its velocity, a static one starts at rest; the mass
+    /// data becomes all zeros. Contacts with it are rebuilt from the next step
+    /// on, as for [`set_static`](World::set_static): a pair of two bodies that
+    /// are now both static or kinematic stops colliding, and its arbiter
+    /// separates and ends as any separated pair does.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn set_kinematic(&mut self, h: BodyHandle) -> Result<(), Error> {
+        let b = self.bodies.get_mut(h).ok_or(Error::StaleHandle)?;
+        b.body_type = BodyType::Kinematic;
+        b.mass = MassData::STATIC;
+        if b.fixed_rotation {
+            b.angular_velocity = ZERO;
+        }
+        Ok(())
+    }
+
+    /// Makes a body dynamic with the mass `mass` (from a density or given
+    /// outright): the way back from [`set_static`](World::set_static) and
+    /// [`set_kinematic`](World::set_kinematic). It keeps its velocity (a
+    /// static body starts at rest). On a dynamic body it only changes the mass.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`]; [`Error::OutOfRange`] for a mass or density
+    /// outside its range (a mass of 0 included: use `set_static`). The world is
+    /// unchanged on error.
+    pub fn set_dynamic(&mut self, h: BodyHandle, mass: MassSpec) -> Result<(), Error> {
+        let shape = self.bodies.get(h).ok_or(Error::StaleHandle)?.shape;
+        let (area, unit_inertia, _) = self.shape_geometry(shape)?;
+        let mass = match mass {
+            MassSpec::Mass(m) => MassData::from_mass(m, area, unit_inertia)?,
+            MassSpec::Density(d) => MassData::from_density(d, area, unit_inertia)?,
+        };
+        let b = self.bodies.get_mut(h).ok_or(Error::StaleHandle)?;
+        b.body_type = BodyType::Dynamic;
+        b.mass = mass;
+        Ok(())
+    }
+
+    /// Changes a dynamic body's mass (from a density or outright), its moment
+    /// of inertia recomputed from its shape.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`]; [`Error::InvalidOperation`] for a static or
+    /// kinematic body (use [`set_dynamic`](World::set_dynamic)); [`Error::OutOfRange`]
+    /// for a mass or density outside its range. The world is unchanged on error.
+    pub fn set_mass(&mut self, h: BodyHandle, mass: MassSpec) -> Result<(), Error> {
+        if !self.bodies.get(h).ok_or(Error::StaleHandle)?.is_dynamic() {
+            return Err(Error::InvalidOperation { what: "set the mass of a static or kinematic body" });
+        }
+        self.set_dynamic(h, mass)
+    }
+
+    /// Sets a body's friction coefficient, [0, [`MAX_FRICTION`](crate::limits::MAX_FRICTION)].
+    /// Existing contacts keep the friction they were created with (change
+    /// those with [`Arbiter::set_friction`](crate::Arbiter::set_friction)); new ones use it.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`], [`Error::OutOfRange`]; the world is unchanged on error.
+    pub fn set_friction(&mut self, h: BodyHandle, mu: Scalar) -> Result<(), Error> {
+        check_friction(mu)?;
+        self.bodies.get_mut(h).ok_or(Error::StaleHandle)?.friction = mu;
+        Ok(())
+    }
+
+    /// Sets a body's restitution, [0, 1]; like friction, it applies to contacts
+    /// that begin after the change.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`], [`Error::OutOfRange`]; the world is unchanged on error.
+    pub fn set_restitution(&mut self, h: BodyHandle, e: Scalar) -> Result<(), Error> {
+        check_restitution(e)?;
+        self.bodies.get_mut(h).ok_or(Error::StaleHandle)?.restitution = e;
+        Ok(())
+    }
+
+    /// Sets a body's linear damping (1/s, see [`BodyDef::linear_damping`]).
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`], [`Error::OutOfRange`] outside [0,
+    /// [`MAX_BODY_DAMPING`](crate::limits::MAX_BODY_DAMPING)]; the world is
+    /// unchanged on error.
+    pub fn set_linear_damping(&mut self, h: BodyHandle, c: Scalar) -> Result<(), Error> {
+        check_damping(c)?;
+        self.bodies.get_mut(h).ok_or(Error::StaleHandle)?.linear_damping = c;
+        Ok(())
+    }
+
+    /// Sets a body's angular damping (1/s, see [`BodyDef::angular_damping`]).
+    ///
+    /// # Errors
+    /// As [`set_linear_damping`](World::set_linear_damping).
+    pub fn set_angular_damping(&mut self, h: BodyHandle, c: Scalar) -> Result<(), Error> {
+        check_damping(c)?;
+        self.bodies.get_mut(h).ok_or(Error::StaleHandle)?.angular_damping = c;
+        Ok(())
+    }
+
+    /// Sets a body's gravity scale (see [`BodyDef::gravity_scale`]).
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`], [`Error::OutOfRange`] outside
+    /// ±[`MAX_GRAVITY_SCALE`](crate::limits::MAX_GRAVITY_SCALE); the world is
+    /// unchanged on error.
+    pub fn set_gravity_scale(&mut self, h: BodyHandle, scale: Scalar) -> Result<(), Error> {
+        check_gravity_scale(scale)?;
+        self.bodies.get_mut(h).ok_or(Error::StaleHandle)?.gravity_scale = scale;
+        Ok(())
+    }
+
+    /// Locks or frees a body's rotation (see [`BodyDef::fixed_rotation`]);
+    /// locking stops its spin at once and keeps its angle.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn set_fixed_rotation(&mut self, h: BodyHandle, on: bool) -> Result<(), Error> {
+        let b = self.bodies.get_mut(h).ok_or(Error::StaleHandle)?;
+        b.fixed_rotation = on;
+        if on {
+            b.angular_velocity = ZERO;
+        }
+        Ok(())
+    }
+
+    /// Sets a body's Box2D collision filter (see [`CollisionFilter`]). Pairs it
+    /// no longer collides with stop from the next step: their arbiters separate
+    /// and end as any separated pair does (no push in between).
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn set_filter(&mut self, h: BodyHandle, filter: CollisionFilter) -> Result<(), Error> {
+        self.bodies.get_mut(h).ok_or(Error::StaleHandle)?.filter = filter;
+        Ok(())
+    }
+
+    /// Sets a body's collision group bits (the manual's rule: bodies sharing a
+    /// bit never collide).
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`].
+    pub fn set_collision_groups(&mut self, h: BodyHandle, bits: u32) -> Result<(), Error> {
+        self.bodies.get_mut(h).ok_or(Error::StaleHandle)?.collision_groups = bits;
+        Ok(())
+    }
+
+    /// Sets a kinematic (or dynamic) body's velocities so that the next step
+    /// of `dt` seconds carries it to `position` (its centre of mass, m) and
+    /// `rotation`: Box2D's `b2Body_SetTargetTransform`. Moving several
+    /// kinematic bodies this way each step keeps them rigid together (a
+    /// container's walls, a platform and its rails), where velocities worked
+    /// out by hand drift apart.
+    ///
+    /// The linear velocity is (target − position) / dt. The angular velocity
+    /// is chosen for how the step integrates a rotation (each sub-step of h
+    /// turns by atan(ω·h)), so the step turns by the relative angle Δθ:
+    /// ω = tan(Δθ / n) / h over n sub-steps. The target is reached to the
+    /// rounding of the integration (about 1e-9 m and 1e-9 rad a step;
+    /// `tests/body_options.rs` measures it). A fixed-rotation body's rotation is
+    /// left alone. A dynamic body gets the same velocities, and contacts and
+    /// joints still act on it.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`]; [`Error::InvalidTimeStep`] for `dt` outside
+    /// [[`MIN_TIME_STEP`], [`MAX_TIME_STEP`]]; [`Error::InvalidOperation`] for a
+    /// static or frozen (out of bounds) body; [`Error::OutsideBounds`] for a
+    /// target outside the world; [`Error::OutOfRange`] for a zero rotation, or
+    /// a target that needs a speed beyond the world's limits (linear speed, the
+    /// angular speed limit, an eighth of a turn per step, or the body's rim
+    /// speed). The world is unchanged on error.
+    pub fn set_target_transform(
+        &mut self,
+        h: BodyHandle,
+        position: Vector2,
+        rotation: Rot,
+        dt: Scalar,
+    ) -> Result<(), Error> {
+        if dt < MIN_TIME_STEP || dt > MAX_TIME_STEP {
+            return Err(Error::InvalidTimeStep);
+        }
+        let target_q = normalized_rotation(rotation)?;
+        if !self.def.bounds.contains(position) {
+            return Err(Error::OutsideBounds);
+        }
+        let b = self.bodies.get(h).ok_or(Error::StaleHandle)?;
+        if !b.moved_by_step() {
+            return Err(Error::InvalidOperation { what: "target transform of a static or frozen body" });
+        }
+        let d = position - b.position;
+        let v = Vector2::new(d.x / dt, d.y / dt);
+        let vmax = self.def.max_linear_speed;
+        if v.x.abs() > vmax || v.y.abs() > vmax || v.length() > vmax {
+            return Err(Error::OutOfRange { what: "target transform (linear speed)" });
+        }
+        let w = if b.fixed_rotation {
+            ZERO
+        } else {
+            // The sub-step as the step computes it (`StepContext::new`).
+            let n = self.def.substeps.max(1);
+            let sub = dt * Scalar::from_num(n).recip();
+            let turn = b.rotation.inv_mul(target_q).angle();
+            let per = Rot::from_angle(turn.div_or_zero(Scalar::from_num(n)));
+            // tan(Δθ/n) = s / c, with |Δθ/n| ≤ π/4 checked below: c ≥ 0.7.
+            let w = (per.s / per.c).div_or_zero(sub);
+            let eighth_turn = crate::math::scalar::FRAC_PI_2 * crate::math::scalar::HALF;
+            let wmax =
+                crate::solver::angular_speed_limit(b, self.def.max_angular_speed.min(eighth_turn / dt));
+            if turn.abs() > eighth_turn || w.abs() > wmax {
+                return Err(Error::OutOfRange { what: "target transform (angular speed)" });
+            }
+            w
+        };
+        let b = self.bodies.get_mut(h).ok_or(Error::StaleHandle)?;
+        b.linear_velocity = v;
+        b.angular_velocity = w;
         Ok(())
     }
 }
