@@ -107,6 +107,14 @@ pub struct Arbiter {
     pub(crate) restitution: Scalar,
     /// Solve this step (derived: set by the lifecycle and `pre_solve`).
     pub(crate) solve: bool,
+    /// The bodies touched at the end of the last step (see
+    /// [`crate::events`]); for a sensor pair, unused (its `Contact` state
+    /// means overlapping). State: in the snapshot and the hash.
+    pub(crate) touching: bool,
+    /// The fastest approach speed along the normal at the start of this step
+    /// and where (derived, per step: the contact hit event's).
+    pub(crate) approach: Scalar,
+    pub(crate) approach_point: Vector2,
 }
 
 impl Arbiter {
@@ -133,6 +141,9 @@ impl Arbiter {
         friction: ZERO,
         restitution: ZERO,
         solve: false,
+        touching: false,
+        approach: ZERO,
+        approach_point: Vector2::ZERO,
     };
 
     /// The canonical key of the pair: (lower body slot, higher body slot).
@@ -201,6 +212,16 @@ impl Arbiter {
     #[must_use]
     pub fn is_first_contact(&self) -> bool {
         self.state == ArbiterState::FirstContact
+    }
+
+    /// True when the bodies touched at the end of the last step: a contact
+    /// point at most [`TOUCH_DISTANCE`](crate::events::TOUCH_DISTANCE) apart
+    /// (not merely within the speculative distance). What the contact begin
+    /// and end events report (see [`crate::events`]); false for a sensor pair.
+    #[inline]
+    #[must_use]
+    pub fn is_touching(&self) -> bool {
+        self.touching
     }
 
     /// Unit normal from A to B.

@@ -84,6 +84,8 @@ pub struct Body {
     pub(crate) out_of_bounds: bool,
     /// Swept against dynamic bodies too when fast (see [`BodyDef::bullet`]).
     pub(crate) bullet: bool,
+    /// Detects overlap and never pushes (see [`BodyDef::sensor`]).
+    pub(crate) sensor: bool,
     /// Bounding radius about the centre of mass (m), cached from the shape.
     pub(crate) radius: Scalar,
     /// World bounding box, refreshed whenever the body moves (derived state).
@@ -114,6 +116,7 @@ impl Body {
             user_data: 0,
             out_of_bounds: false,
             bullet: false,
+            sensor: false,
             radius: ZERO,
             aabb: Rect { min: Vector2::ZERO, max: Vector2::ZERO },
             force_dv: Vector2::ZERO,
@@ -287,10 +290,19 @@ impl Body {
     }
 
     /// Marks the body a bullet or not (see [`BodyDef::bullet`]); takes effect
-    /// from the next step. Part of the snapshot and the state hash.
+    /// from the next step. Part of the snapshot and the state hash. A sensor
+    /// is never a bullet: on a sensor the call changes nothing.
     #[inline]
     pub fn set_bullet(&mut self, on: bool) {
-        self.bullet = on;
+        self.bullet = on && !self.sensor;
+    }
+
+    /// True when the body is a sensor (see [`BodyDef::sensor`]): it reports
+    /// overlaps as sensor events and never pushes anything.
+    #[inline]
+    #[must_use]
+    pub fn is_sensor(&self) -> bool {
+        self.sensor
     }
 
     /// True once the body left the world bounds: it is frozen until

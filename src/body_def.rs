@@ -54,6 +54,8 @@ pub struct BodyDef {
     /// Swept against dynamic bodies too when fast (default false; see
     /// [`BodyDef::bullet`]).
     pub bullet: bool,
+    /// Detects overlap and never pushes (default false; see [`BodyDef::sensor`]).
+    pub sensor: bool,
 }
 
 impl BodyDef {
@@ -85,6 +87,7 @@ impl BodyDef {
             collision_level: 0,
             user_data: 0,
             bullet: false,
+            sensor: false,
         }
     }
 
@@ -206,6 +209,21 @@ impl BodyDef {
     #[must_use]
     pub fn bullet(mut self, on: bool) -> Self {
         self.bullet = on;
+        self
+    }
+
+    /// Makes the body a sensor (Box2D's and rapier's term): it detects the
+    /// bodies that overlap it and reports them as sensor events
+    /// ([`World::sensor_begin_events`](crate::World::sensor_begin_events)),
+    /// but never pushes: no contact is solved with it, no velocity changes,
+    /// continuous collision ignores it. Overlap is true overlap (no
+    /// speculative margin). Sensors do not detect other sensors; a static
+    /// sensor detects dynamic and kinematic bodies (a coin, a trigger zone).
+    /// A sensor cannot be a bullet: [`World::add_body`](crate::World::add_body)
+    /// refuses the pair.
+    #[must_use]
+    pub fn sensor(mut self) -> Self {
+        self.sensor = true;
         self
     }
 }

@@ -188,6 +188,7 @@ pub mod collision;
 pub mod constraint;
 pub mod continuous;
 pub mod error;
+pub mod events;
 pub mod force;
 pub mod geometry;
 pub mod handler;
@@ -209,6 +210,9 @@ pub use constraint::{
     Constraint, ConstraintHandle, Joint, JointDef, JointHandle, JointKind, MaxTorque, Motor,
 };
 pub use error::Error;
+pub use events::{
+    ContactBeginEvent, ContactEndEvent, ContactHitEvent, JointBrokeEvent, SensorEvent, TOUCH_DISTANCE,
+};
 pub use force::{
     ForceGenerator, Generator, GeneratorMut, GravityForceGenerator, GravityToPointForceGenerator,
     LinearForceGenerator, Targets,

@@ -277,6 +277,7 @@ impl WorldSpec {
             contacts: usize::from(self.contacts % 129),
             joints: usize::from(self.joints % 33),
             post_step_callbacks: arphysics::handler::DEFAULT_POST_STEP_CALLBACKS,
+            events: 16,
         }
     }
 }

@@ -5,7 +5,7 @@
 
 use super::layout::{BodyRecord, GeneratorRecord, Layout, StoredGenerator};
 use super::write::Props;
-use super::NO_LINK;
+use super::{NO_LINK, TOUCHING};
 use crate::arbiter::{Arbiter, ArbiterState};
 use crate::arena::NO_SLOT;
 use crate::body::compute_aabb;
@@ -65,7 +65,8 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
             body_b: a.b,
             level_a: level(a.a),
             level_b: level(a.b),
-            state: ArbiterState::from_u8(a.state).unwrap_or(ArbiterState::Separated),
+            state: ArbiterState::from_u8(a.state & !TOUCHING).unwrap_or(ArbiterState::Separated),
+            touching: a.state & TOUCHING != 0,
             steps_separated: a.steps_separated,
             count: a.count,
             ..Arbiter::EMPTY
@@ -137,6 +138,7 @@ fn body_from(p: &Props, r: &BodyRecord, recips: &mut Recips) -> Body {
     b.collision_level = p.level;
     b.user_data = p.user_data;
     b.bullet = p.bullet;
+    b.sensor = p.sensor;
     b.out_of_bounds = r.out_of_bounds();
     b
 }

@@ -98,8 +98,15 @@ pub const ARBITER_RECORD: usize = 58;
 pub const JOINT_RECORD: usize = 160;
 
 /// The body-type byte of a properties record: bits 0–1 the type (0 static,
-/// 1 kinematic, 2 dynamic), bit 4 the bullet flag; the other bits are zero.
+/// 1 kinematic, 2 dynamic), bit 4 the bullet flag, bit 5 the sensor flag (never
+/// both); the other bits are zero.
 const BULLET: u8 = 1 << 4;
+/// The sensor flag of the body-type byte.
+const SENSOR: u8 = 1 << 5;
+/// The state byte of an arbiter record: bits 0–6 the [`ArbiterState`](crate::ArbiterState),
+/// bit 7 set while the pair touches (for contact begin and end events; only in
+/// the `Contact` state).
+const TOUCHING: u8 = 1 << 7;
 /// The link field of a body record: bit 31 live, bit 30 out of bounds, bits 0–29
 /// the free-list successor (free slot) or the properties index (live slot).
 const LIVE: u32 = 1 << 31;

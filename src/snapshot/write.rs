@@ -3,7 +3,7 @@
 use super::hash::Hash64;
 use super::{
     Part, Sink, ARBITER_RECORD, BODY_RECORD, BULLET, HEADER, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, NO_LINK,
-    OUT_OF_BOUNDS, PROPS_RECORD, TRAILER, VERSION,
+    OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, TOUCHING, TRAILER, VERSION,
 };
 use crate::arena::NO_SLOT;
 use crate::body::{Body, BodyType, Shape};
@@ -26,6 +26,7 @@ pub(super) struct Props {
     pub(super) level: u32,
     pub(super) user_data: u64,
     pub(super) bullet: bool,
+    pub(super) sensor: bool,
 }
 
 impl Props {
@@ -41,6 +42,7 @@ impl Props {
             level: b.collision_level,
             user_data: b.user_data,
             bullet: b.bullet,
+            sensor: b.sensor,
         }
     }
 }
@@ -244,7 +246,7 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
             rec.u32(h.index());
             rec.u32(h.generation());
         }
-        rec.u8(a.state as u8);
+        rec.u8(a.state as u8 | if a.touching { TOUCHING } else { 0 });
         rec.u32(a.steps_separated);
         rec.u8(a.count);
         for (k, p) in a.points.iter().enumerate() {
@@ -319,7 +321,7 @@ fn write_props(s: &mut impl Sink, p: &Props) {
             s.u32(h.generation());
         }
     }
-    s.u8(p.body_type as u8 | if p.bullet { BULLET } else { 0 });
+    s.u8(p.body_type as u8 | if p.bullet { BULLET } else { 0 } | if p.sensor { SENSOR } else { 0 });
     s.scalar(p.mass);
     s.scalar(p.inertia);
     s.scalar(p.friction);

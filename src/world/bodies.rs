@@ -87,6 +87,9 @@ impl World<'_> {
         };
         check_friction(def.friction)?;
         check_restitution(def.restitution)?;
+        if def.sensor && def.bullet {
+            return Err(Error::InvalidOperation { what: "a sensor cannot be a bullet" });
+        }
         let rotation = normalized_rotation(def.rotation)?;
         if !self.def.bounds.contains(def.position) {
             return Err(Error::OutsideBounds);
@@ -118,6 +121,7 @@ impl World<'_> {
             user_data: def.user_data,
             out_of_bounds: false,
             bullet: def.bullet,
+            sensor: def.sensor,
             radius,
             aabb: Rect::default(),
             force_dv: Vector2::ZERO,

@@ -24,11 +24,11 @@ use arphysics::{
 /// change to one must be deliberate and explained in its commit message.
 pub const GOLDEN_CORE_SCENE: u64 = 0x88b8_fbd2_c9ca_3c7d;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_PYRAMID: u64 = 0x4824_b2cf_8384_a768;
+pub const GOLDEN_PYRAMID: u64 = 0x7e74_5cc3_d709_d6fd;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_MIXED: u64 = 0xbd56_ea6e_f157_789d;
+pub const GOLDEN_MIXED: u64 = 0xef03_cf06_a2c2_e429;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_LONG: u64 = 0x0330_f2a7_2a22_c49a;
+pub const GOLDEN_LONG: u64 = 0x674e_d65b_b5a8_4dd2;
 
 /// Steps of the core scene.
 pub const CORE_STEPS: u32 = 600;
