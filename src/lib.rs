@@ -218,7 +218,7 @@ pub use force::{
     LinearForceGenerator, Targets,
 };
 pub use geometry::{MassData, PolygonPath};
-pub use handler::{CallbackContext, CollisionHandler, FnHandler, Handler, PostStepFn};
+pub use handler::{CallbackContext, ClosureHandler, CollisionHandler, FnHandler, Handler, PostStepFn};
 pub use hook::Hook;
 pub use index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};
 pub use limits::{MAX_TIME_STEP, MIN_TIME_STEP};

@@ -19,7 +19,7 @@ const SUBSTEPS: f64 = 4.0;
 const G: f64 = 9.81;
 const R: f64 = 0.25;
 
-fn world(caps: Capacities) -> World<'static> {
+fn world<'a>(caps: Capacities) -> World<'a> {
     let def = WorldDef::with_bounds(Rect::from_corners(v(-50.0, -10.0), v(50.0, 50.0)));
     assert_eq!(def.substeps, SUBSTEPS as u32);
     let mut w = World::with_capacities(def, caps).expect("world");
@@ -260,4 +260,43 @@ fn events_are_identical_after_restore_and_resimulation() {
     for (n, (a, b)) in first.iter().zip(&second).enumerate() {
         assert_eq!(a, b, "step {n} after the snapshot");
     }
+}
+
+/// Closures where function pointers were: a `begin` closure that counts into a
+/// local (borrowed: no allocator needed) and a boxed `pre_solve` that captures
+/// the ground and lets a ball fall through it (a one-way floor).
+#[test]
+fn closure_handlers_capture_the_game_state() {
+    let mut begun = 0u32;
+    {
+        let mut count = |_: &mut Arbiter, _: &mut CallbackContext<'_>| {
+            begun += 1;
+            true
+        };
+        let mut handler =
+            ClosureHandler { begin: Some(Hook::Borrowed(&mut count)), ..ClosureHandler::default() };
+        let mut w = world(Capacities::for_bodies(8));
+        w.add_collision_handler(0, 0, Handler::borrowed(&mut handler)).expect("handler");
+        ground(&mut w);
+        w.add_body(BodyDef::circle(s(R)).position(v(0.0, R + 0.2))).expect("ball");
+        for _ in 0..120 {
+            w.step(s(DT)).expect("step");
+        }
+    }
+    assert_eq!(begun, 1);
+
+    let mut w = world(Capacities::for_bodies(8));
+    let floor = ground(&mut w);
+    let pass_through = move |arb: &mut Arbiter, _: &mut CallbackContext<'_>| {
+        let (a, b) = arb.bodies();
+        a != floor && b != floor
+    };
+    let handler =
+        ClosureHandler { pre_solve: Some(Hook::Boxed(Box::new(pass_through))), ..ClosureHandler::default() };
+    w.add_collision_handler(0, 0, handler).expect("handler");
+    let ball = w.add_body(BodyDef::circle(s(R)).position(v(0.0, R + 0.2))).expect("ball");
+    for _ in 0..240 {
+        w.step(s(DT)).expect("step");
+    }
+    assert!(w.body(ball).expect("ball").position().y < s(-1.0), "the ball should fall through");
 }
