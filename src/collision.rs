@@ -245,6 +245,8 @@ pub(crate) fn broad_phase(
 /// callbacks), and an existing arbiter is dropped, with `end` if it had begun
 /// (so `begin` and `end` still pair up; the pair begins again once there is
 /// room). The lowest keys are kept. Returns how many keys were skipped.
+// The step's parts it works on, each borrowed apart (as the other stages).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn update_arbiters(
     ctx: &StepContext,
     candidates: &[(u32, u32)],

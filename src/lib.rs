@@ -7,7 +7,9 @@
 //! engine implementing the ARPhysics design: worlds, pluggable spatial indexing,
 //! circle and convex polygon bodies sharing polygon paths, arbiters with the five
 //! states of the manual, force generators, collision handlers keyed by collision
-//! levels, collision groups and post-step callbacks.
+//! levels, collision groups and post-step callbacks; sensors and event lists
+//! (contact begin, end and hit, sensor begin and end, joint broke) read after
+//! each step.
 //!
 //! Built for lockstep and rollback multiplayer games (every peer computes the
 //! bit-identical world from the same inputs), embedded and console targets (no
@@ -47,6 +49,8 @@
 //! * [`index`], [`collide`], [`arbiter`], [`handler`], [`collision`]: the broad
 //!   phase (a trait you can implement), the narrow phase (one file per shape pair),
 //!   the arbiter lifecycle and the callbacks.
+//! * [`events`]: the event lists a step leaves (contacts, sensors, broken
+//!   joints), in fixed-capacity buffers, in pair-key order.
 //! * [`continuous`]: continuous collision, which sweeps fast bodies (and
 //!   bullets) to their first impact after the solve.
 //! * [`constraint`]: the manual's spring, damped spring and rod, plus rope,
@@ -73,13 +77,14 @@
 //!                       storage (Storage, WorldBuffers, Capacities) bodies joints
 //!   step.rs             StepContext and the pipeline, in order: broad phase →
 //!                       forces → narrow phase and arbiter lifecycle → solve →
-//!                       continuous collision → limits → post_solve; then (in
+//!                       continuous collision → limits → events → post_solve; then (in
 //!                       the world) broken joints and post-step callbacks
 //!   index/              SpatialIndex, brute_force, sort_and_sweep
 //!   collision.rs        the broad- and narrow-phase stages, the arbiter lifecycle
 //!   collide/            one file per shape pair, manifold, toi (time of impact)
 //!   continuous.rs       the continuous collision stage
 //!   arbiter.rs          the manual's five states, ArbiterStore
+//!   events.rs           the event lists (contact, sensor, joint broke)
 //!   force/              ForceGenerator, the built-ins, the forces stage
 //!   solver/             mod (the solve stage) body softness sweep
 //!                       contact/ (prepare, solve, restitution)
@@ -151,7 +156,10 @@
 //! | `b2BodyDef::isBullet`, continuous collision | — | [`BodyDef::bullet`]; fast bodies are always swept against static and kinematic bodies ([`continuous`]) |
 //! | gravity in the world def | `cpSpaceSetGravity` | a [`GravityForceGenerator`] (the manual's force generators) |
 //! | `b2Filter` categories / masks | `cpShapeFilter` groups | collision groups (shared bit ⇒ no collision) and collision levels (select handlers) |
-//! | `b2PreSolveFcn`, begin/end touch events | `cpCollisionHandler` begin / preSolve / postSolve / separate | [`CollisionHandler`] per level pair, [`FnHandler`] |
+//! | `b2PreSolveFcn` | `cpCollisionHandler` begin / preSolve / postSolve / separate | [`CollisionHandler`] per level pair, [`FnHandler`] (function pointers), [`ClosureHandler`] (closures) |
+//! | `b2World_GetContactEvents` (begin / end touch, hit), `b2ContactData` | — | [`World::contact_begin_events`], [`World::contact_end_events`], [`World::contact_hit_events`] ([`events`]); [`Arbiter::is_touching`] |
+//! | `b2ShapeDef::isSensor`, `b2World_GetSensorEvents` | `cpShapeSetSensor` | [`BodyDef::sensor`], [`World::sensor_begin_events`], [`World::sensor_end_events`] |
+//! | joint break (`b2Joint_GetConstraintForce` + destroy) | — | [`JointDef::breakable`], [`World::joint_broke_events`] |
 //! | `cpSpaceAddPostStepCallback` | same | [`CallbackContext::add_post_step_callback`] |
 //! | `b2RevoluteJoint`, `b2WeldJoint`, `b2DistanceJoint`, motor, limits, springs | `cpPivotJoint`, `cpDampedSpring`, `cpSlideJoint`… | [`JointKind`]: `Pivot` (limits, motor), `Weld`, `Rod`, `Rope`, `Spring`, `DampedSpring`; breakable |
 //! | `b2World_CastRay`, `b2World_OverlapAABB` | `cpSpaceSegmentQuery`, `cpSpaceBBQuery` | [`World::ray_cast`], [`World::ray_cast_all`], [`World::query_aabb`], [`World::query_point`], [`World::query_shape`] |
