@@ -48,7 +48,9 @@
 //! events (the `EVENTS` parameter of [`WorldBuffers`](crate::WorldBuffers)).
 //! Events past that are dropped, never a panic and never an allocation, and
 //! counted in [`StepReport::events_dropped`](crate::StepReport::events_dropped).
-//! Which survive is deterministic: the lowest keys.
+//! Which survive is deterministic: events are found in pair-key order (the
+//! ends of pairs that lost their contact points in the narrow phase first,
+//! then those found on the final poses), and a full list keeps the first.
 //!
 //! # Rollback
 //! What the events are computed from (the arbiters' touching flags, the

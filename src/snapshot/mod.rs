@@ -13,13 +13,14 @@
 //! 1. framing, [`HEADER`] = 16 bytes: `ARPS`, the version (u32), and the
 //!    snapshot's total length in bytes (u64, trailer included);
 //! 2. the world: step count, world settings, a checksum of the polygon paths;
-//! 3. the table of body properties (shape, type and bullet flag, mass, material, groups, level,
-//!    user data: 58 bytes per run of consecutive bodies that share them);
+//! 3. the table of body properties (shape, type, bullet and sensor flags, mass,
+//!    material, groups, level, user data: 58 bytes per run of consecutive
+//!    bodies that share them);
 //! 4. the body allocator and one 64-byte record per body slot (generation,
 //!    free-list link or flags and properties index, position, rotation,
 //!    velocities);
 //! 5. the generator allocator and the force generators;
-//! 6. the arbiters (58 bytes each: the pair, state, steps since separation, and
+//! 6. the arbiters (58 bytes each: the pair, state and touching flag, steps since separation, and
 //!    per contact point its feature id and accumulated normal and friction
 //!    impulses);
 //! 7. the joint allocator and the joints (160 bytes each);

@@ -31,6 +31,7 @@ pub struct Capacities {
     pub paths: usize,
     /// Candidate pairs per step and arbiters (pairs of bodies in contact, or kept
     /// for persistence). A stack needs about 2 per body, a dense pile about 4.
+    /// A body overlapping a sensor takes one too (see [`BodyDef::sensor`](crate::BodyDef::sensor)).
     pub contacts: usize,
     /// Built-in joints.
     pub joints: usize,
