@@ -89,6 +89,10 @@ pub struct ContactPoint {
     // Offsets of the point from each centre of mass (derived, per step).
     pub(crate) anchor_a: Vector2,
     pub(crate) anchor_b: Vector2,
+    // The approach speed along the normal at the start of the step, Q16.16
+    // (derived, per step, for the contact hit event; in what was padding, so
+    // the arbiter stays 256 bytes).
+    pub(crate) approach: i32,
 }
 
 /// The collision state of a pair of bodies.
@@ -111,10 +115,6 @@ pub struct Arbiter {
     /// [`crate::events`]); for a sensor pair, unused (its `Contact` state
     /// means overlapping). State: in the snapshot and the hash.
     pub(crate) touching: bool,
-    /// The fastest approach speed along the normal at the start of this step
-    /// and where (derived, per step: the contact hit event's).
-    pub(crate) approach: Scalar,
-    pub(crate) approach_point: Vector2,
 }
 
 impl Arbiter {
@@ -136,14 +136,13 @@ impl Arbiter {
             max_normal_impulse: ZERO,
             anchor_a: Vector2::ZERO,
             anchor_b: Vector2::ZERO,
+            approach: 0,
         }; 2],
         count: 0,
         friction: ZERO,
         restitution: ZERO,
         solve: false,
         touching: false,
-        approach: ZERO,
-        approach_point: Vector2::ZERO,
     };
 
     /// The canonical key of the pair: (lower body slot, higher body slot).
