@@ -172,3 +172,41 @@ fn the_sensor_flag_and_its_overlaps_survive_a_snapshot() {
     assert_eq!(fresh.state_hash(), hash);
     assert_eq!(fresh.bodies().filter(|(_, b)| b.is_sensor()).count(), 1);
 }
+
+/// A snapshot whose body-type byte says "sensor and bullet" (edited and
+/// resealed, so the checksum passes) is refused, and the world is unchanged.
+#[test]
+fn a_snapshot_with_a_sensor_marked_bullet_is_refused() {
+    use arphysics::snapshot::TRAILER;
+    use twox_hash::XxHash64;
+    let take = |sensor: bool| {
+        let mut w = world();
+        let def = BodyDef::circle(s(0.5)).position(v(1.0, 2.0));
+        w.add_body(if sensor { def.sensor() } else { def }).expect("body");
+        let mut buf = vec![0u8; w.snapshot_len()];
+        w.snapshot(&mut buf).expect("snapshot");
+        buf
+    };
+    let (plain, sensor) = (take(false), take(true));
+    let n = plain.len();
+    assert_eq!(n, sensor.len());
+    // The only byte that differs before the trailer is the body-type byte:
+    // dynamic (2) with bit 5 (0x20) for the sensor.
+    let at: Vec<usize> = (0..n - TRAILER).filter(|&i| plain[i] != sensor[i]).collect();
+    assert_eq!(at.len(), 1, "{at:?}");
+    let i = at[0];
+    assert_eq!((plain[i], sensor[i]), (0x02, 0x22));
+    let mut bad = sensor.clone();
+    bad[i] = 0x32; // sensor | bullet | dynamic
+    let sum = XxHash64::oneshot(0, &bad[..n - TRAILER]);
+    bad[n - TRAILER..].copy_from_slice(&sum.to_le_bytes());
+    let mut w = world();
+    w.add_body(BodyDef::circle(s(0.25))).expect("body");
+    let before = w.state_hash();
+    let r = w.restore(&bad);
+    assert!(matches!(r, Err(Error::InvalidSnapshot { .. })), "{r:?}");
+    assert_eq!(w.state_hash(), before);
+    // The sensor snapshot itself restores, the flag with it.
+    w.restore(&sensor).expect("restore");
+    assert!(w.bodies().all(|(_, b)| b.is_sensor()));
+}
