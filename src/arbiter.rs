@@ -28,6 +28,14 @@
 //! ([`crate::continuous`]) and touches on the next step, so `begin` still comes
 //! before anything is resolved.
 //!
+//! # Sensor pairs
+//! A pair with a sensor ([`BodyDef::sensor`](crate::BodyDef::sensor)) has an
+//! arbiter too, never solved and with no callbacks: it is in the `Contact`
+//! state while the shapes overlap (judged on the poses at the end of the
+//! step), with no contact points, and is dropped when they stop. Its events
+//! are the sensor events ([`crate::events`]); [`Arbiter::is_touching`] is
+//! false for it.
+//!
 //! [`WorldDef::arbiter_persistence`]: crate::WorldDef::arbiter_persistence
 
 use managed::ManagedSlice;

@@ -422,7 +422,7 @@ pub(crate) fn touch_events(
     for arb in arbiters.live_mut() {
         let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else { continue };
         if sensor_pair(a, b) {
-            let overlap = overlapping(a, b, paths);
+            let overlap = wants_pair(a, b) && overlapping(a, b, paths);
             let was = arb.state == ArbiterState::Contact;
             if overlap != was {
                 let (sensor, visitor) =

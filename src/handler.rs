@@ -26,6 +26,13 @@
 //! a refusal is an `Err` to the callback that asked and a count in the
 //! [`StepReport`](crate::StepReport).
 //!
+//! Callbacks are function pointers in a [`FnHandler`], closures in a
+//! [`ClosureHandler`] (borrowed, or boxed with `alloc`), or any type that
+//! implements [`CollisionHandler`]. What a game only needs to learn after the
+//! step (what began, ended, hit, entered a sensor) it reads from the event
+//! lists instead ([`crate::events`]), with no callback at all. Sensor pairs
+//! never reach a handler.
+//!
 //! Handlers cannot change the world during the step: they see the arbiter and the
 //! bodies (read-only), and register post-step callbacks through the
 //! [`CallbackContext`] to remove bodies or make other changes safely afterwards.
