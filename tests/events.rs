@@ -254,6 +254,8 @@ fn events_are_identical_after_restore_and_resimulation() {
     assert!(count(|e| e.begin.len()) > 0 && count(|e| e.end.len()) > 0 && count(|e| e.hit.len()) > 0);
     assert!(count(|e| e.sensor_begin.len()) > 0 && count(|e| e.sensor_end.len()) > 0);
     assert_eq!(count(|e| e.joint_broke.len()), 1, "the rope should break once");
+    let broke = first.iter().flat_map(|e| e.joint_broke.iter()).next().expect("broke");
+    assert_eq!(*broke, JointBrokeEvent { joint: rope, body_a: bob, body_b: None });
     w.restore(&buf).expect("restore");
     let second = run(&mut w);
     assert_eq!(w.state_hash(), hash);
@@ -299,4 +301,19 @@ fn closure_handlers_capture_the_game_state() {
         w.step(s(DT)).expect("step");
     }
     assert!(w.body(ball).expect("ball").position().y < s(-1.0), "the ball should fall through");
+}
+
+/// The lists are cleared when a step starts; a step that fails (a bad `dt`)
+/// leaves them as they were.
+#[test]
+fn the_lists_are_cleared_by_each_step_and_kept_by_a_failed_one() {
+    let mut w = world(Capacities::for_bodies(8));
+    ground(&mut w);
+    w.add_body(BodyDef::circle(s(R)).position(v(0.0, R + 0.001))).expect("ball");
+    w.step(s(DT)).expect("step");
+    assert_eq!(w.contact_begin_events().len(), 1);
+    assert!(matches!(w.step(Scalar::ZERO), Err(Error::InvalidTimeStep)));
+    assert_eq!(w.contact_begin_events().len(), 1, "a failed step keeps the lists");
+    w.step(s(DT)).expect("step");
+    assert!(w.contact_begin_events().is_empty(), "resting: nothing new");
 }
