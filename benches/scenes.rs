@@ -27,7 +27,8 @@ fn v(x: f64, y: f64) -> Vector2 {
 
 fn world(bodies: usize, joints: usize) -> Result<World<'static>, arphysics::Error> {
     let bounds = Rect::from_corners(v(-1000.0, -100.0), v(1000.0, 1000.0));
-    let caps = Capacities { bodies, paths: 16, contacts: bodies * 4, joints, post_step_callbacks: 64 };
+    let caps =
+        Capacities { bodies, paths: 16, contacts: bodies * 4, joints, post_step_callbacks: 64, events: 64 };
     let mut w = World::with_capacities(WorldDef::with_bounds(bounds), caps)?;
     w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0)))?;
     Ok(w)
@@ -272,7 +273,14 @@ fn main() -> Result<(), arphysics::Error> {
     // copy) and per contact slot (two arbiter buffers, the candidate pair and
     // the solver's constraint), as the world reports it.
     let (per_body, per_contact) = (Storage::BYTES_PER_BODY, Storage::BYTES_PER_CONTACT);
-    let large = Capacities { bodies: 5100, paths: 0, contacts: 20400, joints: 0, post_step_callbacks: 64 };
+    let large = Capacities {
+        bodies: 5100,
+        paths: 0,
+        contacts: 20400,
+        joints: 0,
+        post_step_callbacks: 64,
+        events: 64,
+    };
     println!(
         "memory: {per_body} bytes per body slot (body {}), {per_contact} per contact slot \
          (arbiter {} twice); large_pyramid's capacities (5,100 bodies, 20,400 contacts): {:.1} MiB",

@@ -1,54 +1,21 @@
-//! The manual's "Safely removing Bodies from the World": when a bullet hits a
-//! player, `bullet_hit` marks the player dead, schedules a post-step callback
-//! keyed by the player, and returns false so the collision is not resolved. After
-//! the step, `remove_dead_player` removes both bodies. A body can never be
-//! removed during a step: callbacks only get read access and the post-step queue.
+//! A bullet hits a player: the game learns it from the world's contact begin
+//! events after the step and removes both bodies then (outside the step, where
+//! `&mut World` is safe), with no callbacks, shared state or handles in user
+//! data. The manual's way (a `begin` handler that schedules a post-step
+//! callback, "Safely removing Bodies from the World") still works and is
+//! what to use when the removal must happen before the next step's hooks see
+//! the bodies; `tests/post_step_queue.rs` covers it.
 //!
 //! The bullet is hit-tested as Box2D's bullets are: at any speed the world
-//! allows (here up to 2,048 m/s, 34 m a step) it cannot pass through the player
-//! between two steps, and `begin` fires only when it touches.
+//! allows (here up to 2,048 m/s, 34 m a step) it cannot pass through the
+//! player between two steps, and the contact begins only when it touches.
 //!
 //! Run: `cargo run --example bullet_player`
 
-use arphysics::{
-    Arbiter, BodyDef, BodyHandle, CallbackContext, FnHandler, Rect, Scalar, Vector2, World, WorldBuffers,
-    WorldDef,
-};
-
-const PLAYER_LEVEL: u32 = 1;
-const BULLET_LEVEL: u32 = 2;
-
-fn bullet_hit(arbiter: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
-    // Which body is the player and which the bullet, from their levels.
-    let Some((player, bullet)) = arbiter.bodies_by_level(PLAYER_LEVEL) else { return true };
-    println!("player {player:?} hit by bullet {bullet:?}");
-    // Remove them after the step; the key is the player's handle as bits.
-    if let Err(e) = ctx.add_post_step_callback(remove_dead_player, player.to_bits()) {
-        eprintln!("could not schedule the removal: {e}");
-    }
-    // No point resolving a collision whose bodies are about to go.
-    false
-}
-
-/// The game's side: which bullet hit which player. A real game keeps this in its
-/// own entity store and puts an entity id in each body's user data; here a player's
-/// user data holds the bullet that hit it (slot index and generation: user data is
-/// in the state hash, so it holds no world tag), so the key is all the callback
-/// needs. A key whose player has gone since decodes to a stale handle: the world
-/// answers `StaleHandle` and nothing is removed.
-fn remove_dead_player(world: &mut World<'_>, key: u64) {
-    let player = BodyHandle::from_bits(key);
-    let bullet = world
-        .body(player)
-        .map(|b| b.user_data())
-        .map(|d| world.handle_from_parts((d >> 32) as u32, d as u32));
-    let removed_player = world.remove_body(player).is_ok();
-    let removed_bullet = bullet.map(|b| world.remove_body(b).is_ok()).unwrap_or(false);
-    println!("post-step: removed player {removed_player}, bullet {removed_bullet}");
-}
+use arphysics::{BodyDef, Rect, Scalar, Vector2, World, WorldBuffers, WorldDef};
 
 /// Fires a bullet from a shooter at a player 10 m away at `speed` m/s and
-/// steps until both are gone; checks that the bullet never began with its
+/// steps until both are gone; checks that the bullet never touched its
 /// shooter (it spawns 0.15 m from the shooter's surface, moving away).
 fn duel(speed: f64) -> Result<(), arphysics::Error> {
     let s = Scalar::from_num::<f64>;
@@ -57,15 +24,9 @@ fn duel(speed: f64) -> Result<(), arphysics::Error> {
     // The fastest the engine allows, so that every speed below is legal.
     let def = WorldDef { max_linear_speed: s(2048.0), ..WorldDef::with_bounds(bounds) };
     let mut world = World::new(def, buffers.storage())?;
-    world.add_collision_handler(
-        PLAYER_LEVEL,
-        BULLET_LEVEL,
-        FnHandler { begin: Some(bullet_hit), ..FnHandler::default() },
-    )?;
 
     let shooter = world.add_body(BodyDef::circle(s(0.5)).position(Vector2::from_int(-5, 0)))?;
-    let player = world
-        .add_body(BodyDef::circle(s(0.5)).position(Vector2::from_int(5, 0)).collision_level(PLAYER_LEVEL))?;
+    let player = world.add_body(BodyDef::circle(s(0.5)).position(Vector2::from_int(5, 0)))?;
     // A bullet (continuous collision against dynamic bodies too), so that no
     // speed carries it through the player between two steps.
     let bullet = world.add_body(
@@ -73,26 +34,29 @@ fn duel(speed: f64) -> Result<(), arphysics::Error> {
             .position(Vector2::new(s(-4.35), s(0.0)))
             .linear_velocity(Vector2::new(s(speed), s(0.0)))
             .mass(s(0.01))
-            .bullet(true)
-            .collision_level(BULLET_LEVEL),
+            .bullet(true),
     )?;
-    // The game remembers which bullet is flying at the player.
-    world.body_mut(player)?.set_user_data((u64::from(bullet.index()) << 32) | u64::from(bullet.generation()));
 
     println!("bullet at {speed} m/s:");
+    let mut hits = 0;
     for step in 1..=60 {
-        let report = world.step(s(1.0 / 60.0))?;
-        // `begin` means touching: the bullet never begins with its shooter.
-        let with_shooter = world.arbiters().any(|a| {
-            let pair = [a.body_a(), a.body_b()];
-            pair.contains(&shooter) && pair.contains(&bullet)
-        });
-        assert!(!with_shooter, "the bullet touched its shooter");
-        if report.post_step_callbacks > 0 {
-            println!("  step {step}: {} post-step callback(s) ran", report.post_step_callbacks);
+        world.step(s(1.0 / 60.0))?;
+        // The events of this step, in pair order; copied out (a small fixed
+        // array would do as well) because removing bodies needs `&mut world`.
+        let begun: Vec<_> = world.contact_begin_events().iter().map(|e| (e.body_a, e.body_b)).collect();
+        for (a, b) in begun {
+            let pair = [a, b];
+            assert!(!(pair.contains(&shooter) && pair.contains(&bullet)), "the bullet touched its shooter");
+            if pair.contains(&player) && pair.contains(&bullet) {
+                hits += 1;
+                println!("  step {step}: player {player:?} hit by bullet {bullet:?}");
+                world.remove_body(player)?;
+                world.remove_body(bullet)?;
+            }
         }
     }
     println!("  bodies left in the world: {}", world.body_count());
+    assert_eq!(hits, 1);
     assert!(world.body(player).is_err() && world.body(bullet).is_err());
     assert!(world.body(shooter).is_ok(), "the shooter is still there");
     Ok(())

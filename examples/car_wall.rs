@@ -1,48 +1,20 @@
-//! The manual's car/wall collision handler: `crash` runs when a car first hits a
-//! wall, `end` when it bounces off. Handlers are registered for a pair of collision
-//! levels, here with plain functions and the other two callbacks left out, exactly
-//! like `addCollisionHandler(CAR_LEVEL, WALL_LEVEL, crash, NULL, NULL, end)`.
+//! A car driven into a wall: the crash and the bounce read from the world's
+//! event lists after each step (no callbacks, no shared counters). The crash
+//! is a contact hit event (Box2D's: the pair began touching faster than the
+//! world's hit threshold, with the approach speed, point and normal); the
+//! bounce is a contact end event.
 //!
-//! `crash` means touching: at any speed the world allows, the car is stopped at
-//! the wall (continuous collision) and `crash` fires once, on contact.
+//! The manual's collision handler (`addCollisionHandler(CAR_LEVEL, WALL_LEVEL,
+//! crash, NULL, NULL, end)`, here an `FnHandler`) still works and is the tool
+//! for what must happen inside the step, e.g. `pre_solve` deciding whether a
+//! pair is solved; events are for what the game does after it.
+//!
+//! At any speed the world allows the car is stopped at the wall (continuous
+//! collision) and the crash is reported once, at the speed it hit.
 //!
 //! Run: `cargo run --example car_wall`
 
-use std::sync::atomic::{AtomicU32, Ordering};
-
-use arphysics::{
-    Arbiter, BodyDef, CallbackContext, FnHandler, PolygonPath, Rect, Scalar, Vector2, World, WorldBuffers,
-    WorldDef,
-};
-
-const CAR_LEVEL: u32 = 1;
-const WALL_LEVEL: u32 = 2;
-
-/// Called when a car first hits a wall: play a sound, mark it damaged… and
-/// return true so the collision is resolved.
-fn crash(arbiter: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
-    CRASHES.fetch_add(1, Ordering::Relaxed);
-    if let Some((car, _wall)) = arbiter.bodies_by_level(CAR_LEVEL) {
-        let speed = ctx.body(car).map(|b| b.linear_velocity().length()).unwrap_or_default();
-        println!("crash! car {car:?} hit the wall at {:.2} m/s", speed.to_num::<f64>());
-    }
-    true
-}
-
-/// Called when the car bounces off the wall.
-fn end(arbiter: &Arbiter, ctx: &mut CallbackContext<'_>) {
-    if let Some((car, _)) = arbiter.bodies_by_level(CAR_LEVEL) {
-        let v = ctx.body(car).map(|b| b.linear_velocity()).unwrap_or_default();
-        println!(
-            "car {car:?} bounced off, now moving at ({:.2}, {:.2}) m/s",
-            v.x.to_num::<f64>(),
-            v.y.to_num::<f64>()
-        );
-    }
-}
-
-/// `crash` calls so far (the handler is a plain function: it counts here).
-static CRASHES: AtomicU32 = AtomicU32::new(0);
+use arphysics::{BodyDef, PolygonPath, Rect, Scalar, Vector2, World, WorldBuffers, WorldDef};
 
 /// Drives the car into the wall at `speed` m/s for 2 s.
 fn drive(speed: i32) -> Result<(), arphysics::Error> {
@@ -52,32 +24,40 @@ fn drive(speed: i32) -> Result<(), arphysics::Error> {
     // The fastest the engine allows, so that every speed below is legal.
     let def = WorldDef { max_linear_speed: s(2048.0), ..WorldDef::with_bounds(bounds) };
     let mut world = World::new(def, buffers.storage())?;
-    let added = world.add_collision_handler(
-        CAR_LEVEL,
-        WALL_LEVEL,
-        FnHandler { begin: Some(crash), end: Some(end), ..FnHandler::default() },
-    );
-    if let Err(e) = added {
-        // The manual's "handle not adding collision handler".
-        eprintln!("could not add the handler: {e}");
-        return Err(e);
-    }
     let wall = world.add_path(PolygonPath::rectangle(s(1.0), s(10.0))?)?;
-    world.add_body(
-        BodyDef::polygon(wall).position(Vector2::from_int(10, 0)).static_body().collision_level(WALL_LEVEL),
-    )?;
+    let wall = world.add_body(BodyDef::polygon(wall).position(Vector2::from_int(10, 0)).static_body())?;
     let car_shape = world.add_path(PolygonPath::rectangle(s(4.0), s(1.5))?)?;
     let car = world.add_body(
         BodyDef::polygon(car_shape)
             .position(Vector2::from_int(0, 0))
             .linear_velocity(Vector2::from_int(speed, 0))
-            .restitution(s(0.5))
-            .collision_level(CAR_LEVEL),
+            .restitution(s(0.5)),
     )?;
-    CRASHES.store(0, Ordering::Relaxed);
+    let is_car_and_wall = |a, b| (a, b) == (car, wall) || (a, b) == (wall, car);
+    let (mut crashes, mut bounces) = (0, 0);
     println!("car at {speed} m/s:");
     for _ in 0..120 {
         world.step(s(1.0 / 60.0))?;
+        for hit in world.contact_hit_events() {
+            if is_car_and_wall(hit.body_a, hit.body_b) {
+                crashes += 1;
+                println!(
+                    "  crash! the car hit the wall at {:.2} m/s, at ({:.2}, {:.2})",
+                    hit.speed.to_num::<f64>(),
+                    hit.point.x.to_num::<f64>(),
+                    hit.point.y.to_num::<f64>()
+                );
+                // The approach speed is the speed the car was driven at.
+                assert!((hit.speed - Scalar::from_num(speed)).abs() < s(0.01 * f64::from(speed)));
+            }
+        }
+        for end in world.contact_end_events() {
+            if is_car_and_wall(end.body_a, end.body_b) {
+                bounces += 1;
+                let v = world.body(car)?.linear_velocity();
+                println!("  the car bounced off, now moving at {:.2} m/s", v.x.to_num::<f64>());
+            }
+        }
         // The car's front is 2 m ahead of its centre, the wall's face at
         // x = 9.5. A car moving less than half its core extent (0.75 m) a step
         // may end a step that far into the wall, and the contact pushes it
@@ -86,7 +66,7 @@ fn drive(speed: i32) -> Result<(), arphysics::Error> {
     }
     let v = world.body(car)?.linear_velocity();
     println!("  after 2 s the car moves at {:.2} m/s (it bounced back)", v.x.to_num::<f64>());
-    assert_eq!(CRASHES.load(Ordering::Relaxed), 1, "one crash");
+    assert_eq!((crashes, bounces), (1, 1), "one crash, one bounce");
     assert!(v.x < Scalar::ZERO);
     Ok(())
 }

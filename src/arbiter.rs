@@ -28,6 +28,14 @@
 //! ([`crate::continuous`]) and touches on the next step, so `begin` still comes
 //! before anything is resolved.
 //!
+//! # Sensor pairs
+//! A pair with a sensor ([`BodyDef::sensor`](crate::BodyDef::sensor)) has an
+//! arbiter too, never solved and with no callbacks: it is in the `Contact`
+//! state while the shapes overlap (judged on the poses at the end of the
+//! step), with no contact points, and is dropped when they stop. Its events
+//! are the sensor events ([`crate::events`]); [`Arbiter::is_touching`] is
+//! false for it.
+//!
 //! [`WorldDef::arbiter_persistence`]: crate::WorldDef::arbiter_persistence
 
 use managed::ManagedSlice;
@@ -89,6 +97,10 @@ pub struct ContactPoint {
     // Offsets of the point from each centre of mass (derived, per step).
     pub(crate) anchor_a: Vector2,
     pub(crate) anchor_b: Vector2,
+    // The approach speed along the normal at the start of the step, Q16.16
+    // (derived, per step, for the contact hit event; in what was padding, so
+    // the arbiter stays 256 bytes).
+    pub(crate) approach: i32,
 }
 
 /// The collision state of a pair of bodies.
@@ -107,6 +119,10 @@ pub struct Arbiter {
     pub(crate) restitution: Scalar,
     /// Solve this step (derived: set by the lifecycle and `pre_solve`).
     pub(crate) solve: bool,
+    /// The bodies touched at the end of the last step (see
+    /// [`crate::events`]); for a sensor pair, unused (its `Contact` state
+    /// means overlapping). State: in the snapshot and the hash.
+    pub(crate) touching: bool,
 }
 
 impl Arbiter {
@@ -128,11 +144,13 @@ impl Arbiter {
             max_normal_impulse: ZERO,
             anchor_a: Vector2::ZERO,
             anchor_b: Vector2::ZERO,
+            approach: 0,
         }; 2],
         count: 0,
         friction: ZERO,
         restitution: ZERO,
         solve: false,
+        touching: false,
     };
 
     /// The canonical key of the pair: (lower body slot, higher body slot).
@@ -201,6 +219,16 @@ impl Arbiter {
     #[must_use]
     pub fn is_first_contact(&self) -> bool {
         self.state == ArbiterState::FirstContact
+    }
+
+    /// True when the bodies touched at the end of the last step: a contact
+    /// point at most [`TOUCH_DISTANCE`](crate::events::TOUCH_DISTANCE) apart
+    /// (not merely within the speculative distance). What the contact begin
+    /// and end events report (see [`crate::events`]); false for a sensor pair.
+    #[inline]
+    #[must_use]
+    pub fn is_touching(&self) -> bool {
+        self.touching
     }
 
     /// Unit normal from A to B.

@@ -94,6 +94,8 @@ pub struct Body {
     pub(crate) gravity_scale: Scalar,
     /// Box2D's category, mask and group.
     pub(crate) filter: CollisionFilter,
+    /// Detects overlap and never pushes (see [`BodyDef::sensor`]).
+    pub(crate) sensor: bool,
     /// Bounding radius about the centre of mass (m), cached from the shape.
     pub(crate) radius: Scalar,
     /// World bounding box, refreshed whenever the body moves (derived state).
@@ -129,6 +131,7 @@ impl Body {
             angular_damping: ZERO,
             gravity_scale: crate::math::scalar::ONE,
             filter: CollisionFilter::DEFAULT,
+            sensor: false,
             radius: ZERO,
             aabb: Rect { min: Vector2::ZERO, max: Vector2::ZERO },
             force_dv: Vector2::ZERO,
@@ -302,10 +305,19 @@ impl Body {
     }
 
     /// Marks the body a bullet or not (see [`BodyDef::bullet`]); takes effect
-    /// from the next step. Part of the snapshot and the state hash.
+    /// from the next step. Part of the snapshot and the state hash. A sensor
+    /// is never a bullet: on a sensor the call changes nothing.
     #[inline]
     pub fn set_bullet(&mut self, on: bool) {
-        self.bullet = on;
+        self.bullet = on && !self.sensor;
+    }
+
+    /// True when the body is a sensor (see [`BodyDef::sensor`]): it reports
+    /// overlaps as sensor events and never pushes anything.
+    #[inline]
+    #[must_use]
+    pub fn is_sensor(&self) -> bool {
+        self.sensor
     }
 
     /// True when the body never rotates (see [`BodyDef::fixed_rotation`]).

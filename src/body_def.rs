@@ -115,6 +115,8 @@ pub struct BodyDef {
     pub gravity_scale: Scalar,
     /// Box2D's category, mask and group (default: collides with everything).
     pub filter: CollisionFilter,
+    /// Detects overlap and never pushes (default false; see [`BodyDef::sensor`]).
+    pub sensor: bool,
 }
 
 impl BodyDef {
@@ -151,6 +153,7 @@ impl BodyDef {
             angular_damping: ZERO,
             gravity_scale: scalar::ONE,
             filter: CollisionFilter::DEFAULT,
+            sensor: false,
         }
     }
 
@@ -319,6 +322,21 @@ impl BodyDef {
     #[must_use]
     pub fn filter(mut self, filter: CollisionFilter) -> Self {
         self.filter = filter;
+        self
+    }
+
+    /// Makes the body a sensor (Box2D's and rapier's term): it detects the
+    /// bodies that overlap it and reports them as sensor events
+    /// ([`World::sensor_begin_events`](crate::World::sensor_begin_events)),
+    /// but never pushes: no contact is solved with it, no velocity changes,
+    /// continuous collision ignores it. Overlap is true overlap (no
+    /// speculative margin). Sensors do not detect other sensors; a static
+    /// sensor detects dynamic and kinematic bodies (a coin, a trigger zone).
+    /// A sensor cannot be a bullet: [`World::add_body`](crate::World::add_body)
+    /// refuses the pair.
+    #[must_use]
+    pub fn sensor(mut self) -> Self {
+        self.sensor = true;
         self
     }
 }

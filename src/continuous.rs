@@ -206,7 +206,8 @@ impl Pass<'_, '_> {
     fn pair(&self, solver: &[SolverBody], f: u32, o: u32, filter: bool, sweeps: &mut u32) -> Option<Scalar> {
         let (sf, so) = (solver.get(f as usize)?, solver.get(o as usize)?);
         let (bf, bo) = (self.bodies.get_at(f)?, self.bodies.get_at(o)?);
-        if sf.ccd & FAST == 0 || bf.bullet != self.bullets || bo.out_of_bounds {
+        // Sensors never stop anything, and are never stopped.
+        if sf.ccd & FAST == 0 || bf.bullet != self.bullets || bo.out_of_bounds || bf.sensor || bo.sensor {
             return None;
         }
         // The target's pose to sweep against: static and kinematic bodies move

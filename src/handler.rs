@@ -26,6 +26,13 @@
 //! a refusal is an `Err` to the callback that asked and a count in the
 //! [`StepReport`](crate::StepReport).
 //!
+//! Callbacks are function pointers in a [`FnHandler`], closures in a
+//! [`ClosureHandler`] (borrowed, or boxed with `alloc`), or any type that
+//! implements [`CollisionHandler`]. What a game only needs to learn after the
+//! step (what began, ended, hit, entered a sensor) it reads from the event
+//! lists instead ([`crate::events`]), with no callback at all. Sensor pairs
+//! never reach a handler.
+//!
 //! Handlers cannot change the world during the step: they see the arbiter and the
 //! bodies (read-only), and register post-step callbacks through the
 //! [`CallbackContext`] to remove bodies or make other changes safely afterwards.
@@ -155,6 +162,77 @@ impl CollisionHandler for FnHandler {
         if let Some(f) = self.end {
             f(a, ctx);
         }
+    }
+}
+
+/// A `begin` or `pre_solve` closure of a [`ClosureHandler`]: borrowed for
+/// the world's lifetime, or (with `alloc`) boxed.
+pub type FilterHook<'a> = Hook<'a, dyn FnMut(&mut Arbiter, &mut CallbackContext<'_>) -> bool + Send + 'a>;
+
+/// A `post_solve` or `end` closure of a [`ClosureHandler`].
+pub type EventHook<'a> = Hook<'a, dyn FnMut(&Arbiter, &mut CallbackContext<'_>) + Send + 'a>;
+
+/// [`FnHandler`] with closures: each callback optional, each a closure that
+/// may capture the game's state. With `alloc`, box them
+/// (`Hook::Boxed(Box::new(|arb, ctx| ...))`) and the handler converts into a
+/// [`Handler`] with `.into()`; without, borrow them
+/// (`Hook::Borrowed(&mut closure)`) and register the handler with
+/// [`Handler::borrowed`]. A missing `begin` or `pre_solve` means "resolve".
+///
+/// Since the event lists ([`crate::events`]) tell a game after the step what
+/// began, ended and hit, closures are for what must happen inside the step:
+/// deciding in `pre_solve` whether a pair is solved (a one-way platform),
+/// or changing its friction.
+#[derive(Default)]
+pub struct ClosureHandler<'a> {
+    /// Called when the pair first touches; false ignores it until it separates.
+    pub begin: Option<FilterHook<'a>>,
+    /// Called every step while touching; false skips the solve this step.
+    pub pre_solve: Option<FilterHook<'a>>,
+    /// Called after the solve for every solved pair.
+    pub post_solve: Option<EventHook<'a>>,
+    /// Called when the pair stops touching.
+    pub end: Option<EventHook<'a>>,
+}
+
+impl core::fmt::Debug for ClosureHandler<'_> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("ClosureHandler")
+            .field("begin", &self.begin.is_some())
+            .field("pre_solve", &self.pre_solve.is_some())
+            .field("post_solve", &self.post_solve.is_some())
+            .field("end", &self.end.is_some())
+            .finish()
+    }
+}
+
+impl CollisionHandler for ClosureHandler<'_> {
+    fn begin(&mut self, a: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
+        self.begin.as_mut().is_none_or(|f| f(a, ctx))
+    }
+
+    fn pre_solve(&mut self, a: &mut Arbiter, ctx: &mut CallbackContext<'_>) -> bool {
+        self.pre_solve.as_mut().is_none_or(|f| f(a, ctx))
+    }
+
+    fn post_solve(&mut self, a: &Arbiter, ctx: &mut CallbackContext<'_>) {
+        if let Some(f) = self.post_solve.as_mut() {
+            f(a, ctx);
+        }
+    }
+
+    fn end(&mut self, a: &Arbiter, ctx: &mut CallbackContext<'_>) {
+        if let Some(f) = self.end.as_mut() {
+            f(a, ctx);
+        }
+    }
+}
+
+#[cfg(feature = "alloc")]
+impl<'a> From<ClosureHandler<'a>> for Handler<'a> {
+    /// Boxes the closure handler (the world owns it).
+    fn from(h: ClosureHandler<'a>) -> Self {
+        Self::Custom(Hook::Boxed(alloc::boxed::Box::new(h)))
     }
 }
 

@@ -7,7 +7,9 @@
 //! engine implementing the ARPhysics design: worlds, pluggable spatial indexing,
 //! circle and convex polygon bodies sharing polygon paths, arbiters with the five
 //! states of the manual, force generators, collision handlers keyed by collision
-//! levels, collision groups and post-step callbacks.
+//! levels, collision groups and post-step callbacks; sensors and event lists
+//! (contact begin, end and hit, sensor begin and end, joint broke) read after
+//! each step.
 //!
 //! Built for lockstep and rollback multiplayer games (every peer computes the
 //! bit-identical world from the same inputs), embedded and console targets (no
@@ -47,6 +49,8 @@
 //! * [`index`], [`collide`], [`arbiter`], [`handler`], [`collision`]: the broad
 //!   phase (a trait you can implement), the narrow phase (one file per shape pair),
 //!   the arbiter lifecycle and the callbacks.
+//! * [`events`]: the event lists a step leaves (contacts, sensors, broken
+//!   joints), in fixed-capacity buffers, in pair-key order.
 //! * [`continuous`]: continuous collision, which sweeps fast bodies (and
 //!   bullets) to their first impact after the solve.
 //! * [`constraint`]: the manual's spring, damped spring and rod, plus rope,
@@ -73,13 +77,14 @@
 //!                       storage (Storage, WorldBuffers, Capacities) bodies joints
 //!   step.rs             StepContext and the pipeline, in order: broad phase →
 //!                       forces → narrow phase and arbiter lifecycle → solve →
-//!                       continuous collision → limits → post_solve; then (in
+//!                       continuous collision → limits → events → post_solve; then (in
 //!                       the world) broken joints and post-step callbacks
 //!   index/              SpatialIndex, brute_force, sort_and_sweep
 //!   collision.rs        the broad- and narrow-phase stages, the arbiter lifecycle
 //!   collide/            one file per shape pair, manifold, toi (time of impact)
 //!   continuous.rs       the continuous collision stage
 //!   arbiter.rs          the manual's five states, ArbiterStore
+//!   events.rs           the event lists (contact, sensor, joint broke)
 //!   force/              ForceGenerator, the built-ins, the forces stage
 //!   solver/             mod (the solve stage) body softness sweep
 //!                       contact/ (prepare, solve, restitution)
@@ -154,7 +159,10 @@
 //! | `b2Filter` categories / masks / group index | `cpShapeFilter` groups | [`CollisionFilter`] on every body ([`BodyDef::filter`], Box2D's rule), vetoed by the manual's collision groups (shared bit ⇒ no collision); collision levels select handlers; [`QueryFilter`] with category, mask and an excluded body |
 //! | `b2BodyDef::fixedRotation`, `linearDamping`, `angularDamping`, `gravityScale` | `cpBodySetMoment(INFINITY)`, `cpSpaceSetDamping` | [`BodyDef::fixed_rotation`], [`BodyDef::linear_damping`], [`BodyDef::angular_damping`], [`BodyDef::gravity_scale`] (read by the gravity generators); `World::set_*` to change them |
 //! | `b2Body_SetType`, `b2Body_SetMassData`, `b2Body_SetTargetTransform` | `cpBodySetType`, `cpBodySetMass` | [`World::set_static`] / [`World::set_kinematic`] / [`World::set_dynamic`], [`World::set_mass`], [`World::set_target_transform`] |
-//! | `b2PreSolveFcn`, begin/end touch events | `cpCollisionHandler` begin / preSolve / postSolve / separate | [`CollisionHandler`] per level pair, [`FnHandler`] |
+//! | `b2PreSolveFcn`, begin/end touch callbacks | `cpCollisionHandler` begin / preSolve / postSolve / separate | [`CollisionHandler`] per level pair, [`FnHandler`] (function pointers), [`ClosureHandler`] (closures) |
+//! | `b2World_GetContactEvents` (begin / end touch, hit), `b2ContactData` | — | [`World::contact_begin_events`], [`World::contact_end_events`], [`World::contact_hit_events`] ([`events`]); [`Arbiter::is_touching`] |
+//! | `b2ShapeDef::isSensor`, `b2World_GetSensorEvents` | `cpShapeSetSensor` | [`BodyDef::sensor`], [`World::sensor_begin_events`], [`World::sensor_end_events`] |
+//! | joint break (`b2Joint_GetConstraintForce` + destroy) | — | [`JointDef::breakable`], [`World::joint_broke_events`] |
 //! | `cpSpaceAddPostStepCallback` | same | [`CallbackContext::add_post_step_callback`] |
 //! | `b2RevoluteJoint`, `b2WeldJoint`, `b2DistanceJoint`, motor, limits, springs | `cpPivotJoint`, `cpDampedSpring`, `cpSlideJoint`… | [`JointKind`]: `Pivot` (limits, motor), `Weld`, `Rod`, `Rope`, `Spring`, `DampedSpring`; breakable |
 //! | `b2World_CastRay`, `b2World_OverlapAABB` | `cpSpaceSegmentQuery`, `cpSpaceBBQuery` | [`World::ray_cast`], [`World::ray_cast_all`], [`World::query_aabb`], [`World::query_point`], [`World::query_shape`] |
@@ -191,6 +199,7 @@ pub mod collision;
 pub mod constraint;
 pub mod continuous;
 pub mod error;
+pub mod events;
 pub mod force;
 pub mod geometry;
 pub mod handler;
@@ -212,12 +221,15 @@ pub use constraint::{
     Constraint, ConstraintHandle, Joint, JointDef, JointHandle, JointKind, MaxTorque, Motor,
 };
 pub use error::Error;
+pub use events::{
+    ContactBeginEvent, ContactEndEvent, ContactHitEvent, JointBrokeEvent, SensorEvent, TOUCH_DISTANCE,
+};
 pub use force::{
     ForceGenerator, Generator, GeneratorMut, GravityForceGenerator, GravityToPointForceGenerator,
     LinearForceGenerator, Targets,
 };
 pub use geometry::{MassData, PolygonPath};
-pub use handler::{CallbackContext, CollisionHandler, FnHandler, Handler, PostStepFn};
+pub use handler::{CallbackContext, ClosureHandler, CollisionHandler, FnHandler, Handler, PostStepFn};
 pub use hook::Hook;
 pub use index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};
 pub use limits::{MAX_TIME_STEP, MIN_TIME_STEP};

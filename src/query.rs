@@ -1,7 +1,7 @@
 //! World queries: ray casts, point, box and shape overlap queries.
 //!
 //! Every query takes a [`QueryFilter`] (collision groups, Box2D's category and
-//! mask, a body to exclude, static bodies) and
+//! mask, a body to exclude, static bodies, sensors) and
 //! writes its results into a caller-owned slice, so none allocates. Results come
 //! in body-slot order, except all-hits ray casts, which come nearest first (ties
 //! by slot). Each body's bounding box is tested before its shape. Queries see
@@ -20,7 +20,9 @@ use crate::world::World;
 ///
 /// A body is seen when it shares no collision-group bit with `groups`, its
 /// category is in `mask_bits` (`body.category_bits & mask_bits != 0`), it is
-/// not `exclude`, and it is not static when `skip_static` is set. The query's
+/// not `exclude`, and it is not static when `skip_static` is set nor a sensor
+/// when `skip_sensors` is (rapier's `exclude_sensors`: a line-of-sight ray
+/// should not stop at a trigger zone). The query's
 /// own `category_bits` must be in the body's mask too (Box2D's rule, so a
 /// body that masks out a category is invisible to queries of that category).
 /// The default sees every body: build it with the methods or
@@ -38,11 +40,20 @@ pub struct QueryFilter {
     pub mask_bits: u64,
     /// A body the query never reports, e.g. the player casting the ray.
     pub exclude: Option<BodyHandle>,
+    /// Skip sensors (default false: queries see them, as every other body).
+    pub skip_sensors: bool,
 }
 
 impl Default for QueryFilter {
     fn default() -> Self {
-        Self { groups: 0, skip_static: false, category_bits: u64::MAX, mask_bits: u64::MAX, exclude: None }
+        Self {
+            groups: 0,
+            skip_static: false,
+            category_bits: u64::MAX,
+            mask_bits: u64::MAX,
+            exclude: None,
+            skip_sensors: false,
+        }
     }
 }
 
@@ -88,9 +99,17 @@ impl QueryFilter {
         self
     }
 
+    /// The same filter skipping sensors, or not.
+    #[must_use]
+    pub fn skip_sensors(mut self, on: bool) -> Self {
+        self.skip_sensors = on;
+        self
+    }
+
     fn accepts(&self, h: BodyHandle, b: &Body) -> bool {
         (self.groups & b.collision_groups) == 0
             && !(self.skip_static && b.is_static())
+            && !(self.skip_sensors && b.sensor)
             && (self.mask_bits & b.filter.category_bits) != 0
             && (self.category_bits & b.filter.mask_bits) != 0
             && self.exclude != Some(h)

@@ -26,11 +26,18 @@
 //! 6. **limits** ([`limits::enforce`]): speeds clamped to the world's maxima;
 //!    bodies whose centre left the bounds are frozen and reported; bounding boxes
 //!    refreshed.
-//! 7. **`post_solve` callbacks** ([`collision::post_solve`]), in canonical pair
+//! 7. **events** ([`collision::touch_events`]): on the final poses, which
+//!    contact pairs touch and which sensor pairs overlap, with the begin, end
+//!    and hit events (see [`crate::events`]), each list sorted by pair key.
+//! 8. **`post_solve` callbacks** ([`collision::post_solve`]), in canonical pair
 //!    order.
 //!
+//! The event lists are cleared once the broad phase has succeeded (a step
+//! that fails leaves them as they were).
+//!
 //! After [`run`], the world (which owns the hooks that need it) removes the
-//! joints that broke, in joint-slot order, handing each to the break callback,
+//! joints that broke, in joint-slot order, recording a joint-broke event and
+//! handing each to the break callback,
 //! then runs the post-step callbacks, once per key, in registration order, with
 //! `&mut World`: the safe place to remove bodies. Callbacks registered while
 //! these run run in the same step, round after round until the queue is empty
@@ -47,6 +54,7 @@ use crate::collision::{self, BroadPhase};
 use crate::constraint::{Joint, JointMarker, UserConstraints, JOINT_DAMPING_RATIO, JOINT_HERTZ};
 use crate::continuous;
 use crate::error::Error;
+use crate::events::Events;
 use crate::force::{self, Generators};
 use crate::geometry::PolygonPath;
 use crate::handler::{HandlerTable, PostStepQueue};
@@ -96,6 +104,10 @@ pub struct StepReport {
     pub continuous_sweeps: u32,
     /// Fast bodies continuous collision put back to their time of impact.
     pub continuous_hits: u32,
+    /// Events left out because their list was full
+    /// ([`Capacities::events`](crate::Capacities::events); see
+    /// [`crate::events`]), all lists together.
+    pub events_dropped: u32,
 }
 
 /// Everything a step derives from the world's configuration and `dt`, computed
@@ -188,6 +200,7 @@ pub(crate) struct StepParts<'w, 'a> {
     pub(crate) joints: &'w mut Arena<'a, Joint, JointMarker>,
     pub(crate) constraints: &'w mut UserConstraints<'a>,
     pub(crate) solver: &'w mut Solver<'a>,
+    pub(crate) events: &'w mut Events<'a>,
 }
 
 /// Runs the stages of one step. On error nothing has changed.
@@ -197,14 +210,24 @@ pub(crate) struct StepParts<'w, 'a> {
 /// or arbiters do not fit the contact buffers.
 pub(crate) fn run(ctx: &StepContext, p: StepParts<'_, '_>) -> Result<StepReport, Error> {
     let found = collision::broad_phase(ctx, p.bodies, p.joints, p.broad_phase, p.arbiters)?;
+    p.events.clear();
     force::apply(ctx, p.bodies, p.generators);
     let candidates = p.broad_phase.candidates(found.count);
-    let skipped =
-        collision::update_arbiters(ctx, candidates, p.bodies, p.paths, p.arbiters, p.handlers, p.post_step);
+    let skipped = collision::update_arbiters(
+        ctx,
+        candidates,
+        p.bodies,
+        p.paths,
+        p.arbiters,
+        p.handlers,
+        p.post_step,
+        p.events,
+    );
     solver::solve(ctx, p.bodies, p.arbiters, p.joints, p.constraints, p.solver);
     let ccd =
         continuous::run(p.bodies, p.paths, &mut p.solver.bodies, p.broad_phase, found.count, p.arbiters);
     let left_bounds = limits::enforce(ctx, p.bodies, p.paths);
+    collision::touch_events(p.bodies, p.paths, &p.solver.bodies, p.arbiters, p.events);
     collision::post_solve(p.bodies, p.arbiters, p.handlers, p.post_step);
     let count = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
     Ok(StepReport {
@@ -215,6 +238,7 @@ pub(crate) fn run(ctx: &StepContext, p: StepParts<'_, '_>) -> Result<StepReport,
         arbiters_dropped: count(skipped),
         continuous_sweeps: ccd.sweeps,
         continuous_hits: ccd.hits,
+        events_dropped: p.events.dropped,
         ..StepReport::default()
     })
 }

@@ -279,7 +279,14 @@ fn in_strict_mode_a_full_pair_buffer_is_an_error_and_changes_nothing() {
     let bounds = Rect::from_corners(v(-100.0, -100.0), v(100.0, 100.0));
     let mut w = World::with_capacities(
         WorldDef { strict_capacity: true, ..WorldDef::with_bounds(bounds) },
-        arphysics::Capacities { bodies: 16, paths: 4, contacts: 2, joints: 0, post_step_callbacks: 4 },
+        arphysics::Capacities {
+            bodies: 16,
+            paths: 4,
+            contacts: 2,
+            joints: 0,
+            post_step_callbacks: 4,
+            events: 64,
+        },
     )
     .expect("world");
     for i in 0..4 {

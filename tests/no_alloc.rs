@@ -1,6 +1,7 @@
 //! The step never allocates: a counting global allocator sees zero allocations on
 //! this thread across 100 steps of a scene with every kind of body and generator
-//! and a collision handler (so, with `std`, the panic guard's snapshot too).
+//! and a collision handler (so, with `std`, the panic guard's snapshot too),
+//! a sensor and a floor (so the event lists fill).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -76,11 +77,28 @@ fn a_hundred_steps_allocate_nothing() {
     }
     world.add_collision_handler(0, 0, FnHandler { begin: Some(begin), ..FnHandler::default() }).expect("h");
 
+    // A static sensor zone around some of the boxes and a floor under them:
+    // sensor and contact events fill the event lists.
+    world
+        .add_body(BodyDef::circle(s(20.0)).position(Vector2::new(s(100.0), s(110.0))).static_body().sensor())
+        .expect("zone");
+    let floor = world.add_path(PolygonPath::rectangle(s(190.0), s(1.0)).expect("floor")).expect("path");
+    world
+        .add_body(BodyDef::polygon(floor).position(Vector2::new(s(100.0), s(97.0))).static_body())
+        .expect("floor");
+
+    let (mut sensor_events, mut contact_events) = (0usize, 0usize);
     COUNTING.with(|c| c.set(true));
     for _ in 0..100 {
         world.step(s(1.0 / 60.0)).expect("step");
+        sensor_events += world.sensor_begin_events().len() + world.sensor_end_events().len();
+        contact_events += world.contact_begin_events().len() + world.contact_hit_events().len();
     }
     let _ = world.state_hash();
     COUNTING.with(|c| c.set(false));
     assert_eq!(ALLOCATIONS.load(Ordering::SeqCst), 0, "allocations during 100 steps");
+    assert!(
+        sensor_events > 0 && contact_events > 0,
+        "{sensor_events} sensor and {contact_events} contact events"
+    );
 }

@@ -21,7 +21,14 @@ fn s(x: f64) -> Scalar {
 fn large_pyramid_after_1000_steps() {
     let v = |x: f64, y: f64| Vector2::new(s(x), s(y));
     let bounds = Rect::from_corners(v(-500.0, -100.0), v(500.0, 500.0));
-    let caps = Capacities { bodies: 5100, paths: 4, contacts: 5100 * 4, joints: 0, post_step_callbacks: 64 };
+    let caps = Capacities {
+        bodies: 5100,
+        paths: 4,
+        contacts: 5100 * 4,
+        joints: 0,
+        post_step_callbacks: 64,
+        events: 64,
+    };
     let mut w = World::with_capacities(WorldDef::with_bounds(bounds), caps).expect("world");
     let ground = w.add_path(PolygonPath::rectangle(s(200.0), s(2.0)).expect("ground")).expect("p");
     w.add_body(BodyDef::polygon(ground).position(v(0.0, -1.0)).static_body()).expect("ground");

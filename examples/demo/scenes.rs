@@ -176,7 +176,8 @@ pub const SCENES: &[Scene] = &[
 /// bounds a little larger than anything the scenes reach.
 fn world(bodies: usize, joints: usize) -> Result<World<'static>, Error> {
     let bounds = Rect::from_corners(Vector2::from_int(-60, -20), Vector2::from_int(60, 80));
-    let capacities = Capacities { bodies, paths: 16, contacts: bodies * 4, joints, post_step_callbacks: 64 };
+    let capacities =
+        Capacities { bodies, paths: 16, contacts: bodies * 4, joints, post_step_callbacks: 64, events: 64 };
     let mut w = World::with_capacities(WorldDef::with_bounds(bounds), capacities)?;
     w.add_force_generator(GravityForceGenerator::new(Vector2::from_int(0, -10)))?;
     Ok(w)

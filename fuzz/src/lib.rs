@@ -278,6 +278,7 @@ impl WorldSpec {
             contacts: usize::from(self.contacts % 129),
             joints: usize::from(self.joints % 33),
             post_step_callbacks: arphysics::handler::DEFAULT_POST_STEP_CALLBACKS,
+            events: 16,
         }
     }
 }
@@ -435,6 +436,11 @@ impl BodySpec {
         }
         if let Some(e) = self.restitution {
             d = d.restitution(e.get());
+        }
+        // Bit 6 of the group byte makes the body a sensor (with bit 7, the
+        // bullet, an error the world must refuse cleanly).
+        if self.collision_groups & 0x40 != 0 {
+            d = d.sensor();
         }
         // Group bits from a small set so that some pairs share bits; the top
         // bit of the same byte makes the body a bullet (continuous collision
@@ -670,6 +676,7 @@ pub enum Op {
 pub struct Filter {
     pub groups: u8,
     pub skip_static: bool,
+    pub skip_sensors: bool,
 }
 
 impl Filter {
@@ -677,6 +684,7 @@ impl Filter {
         QueryFilter {
             groups: u32::from(self.groups & 0x0f),
             skip_static: self.skip_static,
+            skip_sensors: self.skip_sensors,
             ..QueryFilter::default()
         }
     }

@@ -5,7 +5,7 @@
 
 use super::layout::{BodyRecord, GeneratorRecord, Layout, StoredGenerator};
 use super::write::Props;
-use super::NO_LINK;
+use super::{NO_LINK, TOUCHING};
 use crate::arbiter::{Arbiter, ArbiterState};
 use crate::arena::NO_SLOT;
 use crate::body::compute_aabb;
@@ -65,7 +65,8 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
             body_b: a.b,
             level_a: level(a.a),
             level_b: level(a.b),
-            state: ArbiterState::from_u8(a.state).unwrap_or(ArbiterState::Separated),
+            state: ArbiterState::from_u8(a.state & !TOUCHING).unwrap_or(ArbiterState::Separated),
+            touching: a.state & TOUCHING != 0,
             steps_separated: a.steps_separated,
             count: a.count,
             ..Arbiter::EMPTY
@@ -142,6 +143,7 @@ fn body_from(p: &Props, r: &BodyRecord, recips: &mut Recips) -> Body {
     b.angular_damping = p.angular_damping;
     b.gravity_scale = p.gravity_scale;
     b.filter = p.filter;
+    b.sensor = p.sensor;
     b.out_of_bounds = r.out_of_bounds();
     b
 }

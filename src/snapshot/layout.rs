@@ -14,7 +14,7 @@ use super::cursor::Cursor;
 use super::write::Props;
 use super::{
     checksum, invalid, ARBITER_RECORD, BODY_RECORD, BULLET, FIXED_ROTATION, HEADER, JOINT_RECORD, LINK_MASK,
-    LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD, TRAILER, VERSION,
+    LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, TRAILER, VERSION,
 };
 use crate::body::{BodyHandle, BodyType, CollisionFilter, Shape};
 use crate::constraint::{Joint, JointDef, JointKind, MaxTorque, Motor};
@@ -187,7 +187,10 @@ impl<'b> Layout<'b> {
             _ => return Err(invalid("unknown shape")),
         };
         let kind = c.u8()?;
-        let body_type = match kind & !(BULLET | FIXED_ROTATION) {
+        if kind & (BULLET | SENSOR) == BULLET | SENSOR {
+            return Err(invalid("a sensor marked bullet"));
+        }
+        let body_type = match kind & !(BULLET | SENSOR | FIXED_ROTATION) {
             0 => BodyType::Static,
             1 => BodyType::Kinematic,
             2 => BodyType::Dynamic,
@@ -213,6 +216,7 @@ impl<'b> Layout<'b> {
                 mask_bits: c.u64()?,
                 group_index: c.u32()? as i32,
             },
+            sensor: kind & SENSOR != 0,
         })
     }
 

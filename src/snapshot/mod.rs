@@ -13,7 +13,7 @@
 //! 1. framing, [`HEADER`] = 16 bytes: `ARPS`, the version (u32), and the
 //!    snapshot's total length in bytes (u64, trailer included);
 //! 2. the world: step count, world settings, a checksum of the polygon paths;
-//! 3. the table of body properties (shape; type with the bullet and
+//! 3. the table of body properties (shape; type with the bullet, sensor and
 //!    fixed-rotation flags; mass, inertia, friction, restitution, groups,
 //!    level, user data; linear and angular damping, gravity scale; filter
 //!    category, mask and group index: 102 bytes per run of consecutive bodies
@@ -22,7 +22,7 @@
 //!    free-list link or flags and properties index, position, rotation,
 //!    velocities);
 //! 5. the generator allocator and the force generators;
-//! 6. the arbiters (58 bytes each: the pair, state, steps since separation, and
+//! 6. the arbiters (58 bytes each: the pair, state and touching flag, steps since separation, and
 //!    per contact point its feature id and accumulated normal and friction
 //!    impulses);
 //! 7. the joint allocator and the joints (160 bytes each);
@@ -114,12 +114,18 @@ pub const ARBITER_RECORD: usize = 58;
 pub const JOINT_RECORD: usize = 160;
 
 /// The body-type byte of a properties record: bits 0–1 the type (0 static,
-/// 1 kinematic, 2 dynamic), bit 4 (0x10) the bullet flag, bit 6 (0x40) the
-/// fixed-rotation flag; bit 5 (0x20) is reserved for the sensor flag; the
-/// other bits are zero.
+/// 1 kinematic, 2 dynamic), bit 4 (0x10) the bullet flag, bit 5 (0x20) the
+/// sensor flag (never both), bit 6 (0x40) the fixed-rotation flag; the other
+/// bits are zero.
 const BULLET: u8 = 1 << 4;
+/// The sensor flag of the body-type byte.
+const SENSOR: u8 = 1 << 5;
 /// The fixed-rotation flag of the body-type byte.
 const FIXED_ROTATION: u8 = 1 << 6;
+/// The state byte of an arbiter record: bits 0–6 the [`ArbiterState`](crate::ArbiterState),
+/// bit 7 set while the pair touches (for contact begin and end events; only in
+/// the `Contact` state).
+const TOUCHING: u8 = 1 << 7;
 /// The link field of a body record: bit 31 live, bit 30 out of bounds, bits 0–29
 /// the free-list successor (free slot) or the properties index (live slot).
 const LIVE: u32 = 1 << 31;

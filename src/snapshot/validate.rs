@@ -9,7 +9,7 @@
 
 use super::layout::{Alloc, BodyRecord, GeneratorRecord, Layout, StoredGenerator};
 use super::write::{paths_checksum, Props};
-use super::{invalid, NO_LINK};
+use super::{invalid, NO_LINK, TOUCHING};
 use crate::arbiter::ArbiterState;
 use crate::body::{BodyHandle, BodyType, Shape};
 use crate::error::Error;
@@ -201,9 +201,12 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
         if !live_body(l, a.a)? || !live_body(l, a.b)? {
             return Err(invalid("an arbiter names a body that is not in the snapshot"));
         }
-        let state = ArbiterState::from_u8(a.state).ok_or_else(|| invalid("unknown arbiter state"))?;
+        let state =
+            ArbiterState::from_u8(a.state & !TOUCHING).ok_or_else(|| invalid("unknown arbiter state"))?;
+        let touching_ok = a.state & TOUCHING == 0 || state == ArbiterState::Contact;
         if !matches!(state, ArbiterState::Contact | ArbiterState::Ignoring | ArbiterState::Separated)
             || a.count > 2
+            || !touching_ok
         {
             return Err(invalid("an arbiter in a state that does not persist"));
         }

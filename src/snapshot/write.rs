@@ -3,7 +3,7 @@
 use super::hash::Hash64;
 use super::{
     Part, Sink, ARBITER_RECORD, BODY_RECORD, BULLET, FIXED_ROTATION, HEADER, JOINT_RECORD, LINK_MASK, LIVE,
-    MAGIC, NO_LINK, OUT_OF_BOUNDS, PROPS_RECORD, TRAILER, VERSION,
+    MAGIC, NO_LINK, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, TOUCHING, TRAILER, VERSION,
 };
 use crate::arena::NO_SLOT;
 use crate::body::{Body, BodyType, CollisionFilter, Shape};
@@ -31,6 +31,7 @@ pub(super) struct Props {
     pub(super) angular_damping: Scalar,
     pub(super) gravity_scale: Scalar,
     pub(super) filter: CollisionFilter,
+    pub(super) sensor: bool,
 }
 
 impl Props {
@@ -51,6 +52,7 @@ impl Props {
             angular_damping: b.angular_damping,
             gravity_scale: b.gravity_scale,
             filter: b.filter,
+            sensor: b.sensor,
         }
     }
 }
@@ -254,7 +256,7 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
             rec.u32(h.index());
             rec.u32(h.generation());
         }
-        rec.u8(a.state as u8);
+        rec.u8(a.state as u8 | if a.touching { TOUCHING } else { 0 });
         rec.u32(a.steps_separated);
         rec.u8(a.count);
         for (k, p) in a.points.iter().enumerate() {
@@ -330,7 +332,8 @@ fn write_props(s: &mut impl Sink, p: &Props) {
         }
     }
     let fixed = if p.fixed_rotation { FIXED_ROTATION } else { 0 };
-    s.u8(p.body_type as u8 | if p.bullet { BULLET } else { 0 } | fixed);
+    let sensor = if p.sensor { SENSOR } else { 0 };
+    s.u8(p.body_type as u8 | if p.bullet { BULLET } else { 0 } | sensor | fixed);
     s.scalar(p.mass);
     s.scalar(p.inertia);
     s.scalar(p.friction);

@@ -81,6 +81,9 @@ impl World<'_> {
         check_damping(def.linear_damping)?;
         check_damping(def.angular_damping)?;
         check_gravity_scale(def.gravity_scale)?;
+        if def.sensor && def.bullet {
+            return Err(Error::InvalidOperation { what: "a sensor cannot be a bullet" });
+        }
         let rotation = normalized_rotation(def.rotation)?;
         if !self.def.bounds.contains(def.position) {
             return Err(Error::OutsideBounds);
@@ -117,6 +120,7 @@ impl World<'_> {
             angular_damping: def.angular_damping,
             gravity_scale: def.gravity_scale,
             filter: def.filter,
+            sensor: def.sensor,
             radius,
             aabb: Rect::default(),
             force_dv: Vector2::ZERO,

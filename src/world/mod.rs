@@ -41,6 +41,9 @@ use crate::body::{Body, BodyHandle};
 use crate::collision::{BroadPhase, Index};
 use crate::constraint::{Joint, JointHandle, JointMarker, UserConstraints};
 use crate::error::Error;
+use crate::events::{
+    ContactBeginEvent, ContactEndEvent, ContactHitEvent, Events, JointBrokeEvent, SensorEvent,
+};
 use crate::force::{Generator, GeneratorMut, Generators};
 use crate::geometry::PolygonPath;
 use crate::handler::{Handler, HandlerTable, PostStepQueue, MAX_POST_STEP_ROUNDS};
@@ -98,6 +101,8 @@ pub struct World<'a> {
     pub(crate) solver: Solver<'a>,
     pub(crate) constraints: UserConstraints<'a>,
     pub(crate) break_callback: Option<JointBreakFn>,
+    /// The last step's event lists (see [`crate::events`]).
+    pub(crate) events: Events<'a>,
     pub(crate) step_count: u64,
     /// With `std`: the snapshot a step with hooks is rolled back to if a hook
     /// panics (see `world/panic_guard.rs`).
@@ -132,7 +137,17 @@ impl<'a> World<'a> {
             contacts: s.arbiters.len().min(s.arbiters_next.len()).min(s.pairs.len()),
             joints: s.joints.len(),
             post_step_callbacks: s.post_step.len(),
+            events: 0,
         };
+        let events = Events::new(
+            s.contact_begin,
+            s.contact_end,
+            s.contact_hit,
+            s.sensor_begin,
+            s.sensor_end,
+            s.joint_broke,
+        );
+        let capacities = Capacities { events: events.capacity(), ..capacities };
         Ok(Self {
             def,
             bodies: Arena::new(s.bodies).with_tag(tag),
@@ -167,6 +182,7 @@ impl<'a> World<'a> {
             },
             constraints: Arena::inline().with_tag(tag),
             break_callback: None,
+            events,
             step_count: 0,
             #[cfg(feature = "std")]
             panic_guard: panic_guard::PanicGuard::default(),
@@ -275,11 +291,13 @@ impl<'a> World<'a> {
             joints: &mut self.joints,
             constraints: &mut self.constraints,
             solver: &mut self.solver,
+            events: &mut self.events,
         };
         let mut report = step::run(&ctx, parts)?;
         self.step_count = self.step_count.wrapping_add(1);
         let outer = core::mem::replace(&mut self.in_step_hooks, true);
         report.joints_broken = self.remove_broken_joints();
+        report.events_dropped = self.events.dropped;
         let (ran, dropped) = self.drain_post_step();
         self.in_step_hooks = outer;
         report.post_step_callbacks = ran;
@@ -301,6 +319,7 @@ impl<'a> World<'a> {
         s.arbiters_dropped = s.arbiters_dropped.saturating_add(u64::from(r.arbiters_dropped));
         s.post_step_refused = s.post_step_refused.saturating_add(u64::from(r.post_step_refused));
         s.post_step_dropped = s.post_step_dropped.saturating_add(u64::from(r.post_step_dropped));
+        s.events_dropped = s.events_dropped.saturating_add(u64::from(r.events_dropped));
     }
 
     /// Removes the joints that broke this step, in slot order, handing each to
@@ -314,6 +333,11 @@ impl<'a> World<'a> {
             let Some(h) = self.joints.handle_at(i) else { continue };
             if let Some(joint) = self.joints.remove(h) {
                 broken = broken.saturating_add(1);
+                self.events.joint_broke(JointBrokeEvent {
+                    joint: h,
+                    body_a: joint.def.body_a,
+                    body_b: joint.def.body_b,
+                });
                 if let Some(f) = self.break_callback {
                     f(self, h, joint);
                 }
@@ -452,5 +476,71 @@ impl<'a> World<'a> {
         let live = self.arbiters.live();
         let i = live.binary_search_by(|arb| arb.key().cmp(&key)).ok()?;
         live.get(i).filter(|arb| (arb.body_a == a && arb.body_b == b) || (arb.body_a == b && arb.body_b == a))
+    }
+
+    // ---- events --------------------------------------------------------------
+
+    /// Pairs that started touching during the last step, in pair-key order
+    /// (see [`crate::events`]).
+    #[must_use]
+    pub fn contact_begin_events(&self) -> &[ContactBeginEvent] {
+        self.events.contact_begin.as_slice()
+    }
+
+    /// Pairs that stopped touching during the last step, in pair-key order.
+    #[must_use]
+    pub fn contact_end_events(&self) -> &[ContactEndEvent] {
+        self.events.contact_end.as_slice()
+    }
+
+    /// Pairs that started touching during the last step faster than the hit
+    /// threshold ([`World::set_hit_event_threshold`]), in pair-key order.
+    #[must_use]
+    pub fn contact_hit_events(&self) -> &[ContactHitEvent] {
+        self.events.contact_hit.as_slice()
+    }
+
+    /// Bodies that started overlapping a sensor during the last step, in
+    /// pair-key order.
+    #[must_use]
+    pub fn sensor_begin_events(&self) -> &[SensorEvent] {
+        self.events.sensor_begin.as_slice()
+    }
+
+    /// Bodies that stopped overlapping a sensor during the last step, in
+    /// pair-key order.
+    #[must_use]
+    pub fn sensor_end_events(&self) -> &[SensorEvent] {
+        self.events.sensor_end.as_slice()
+    }
+
+    /// Joints that broke during the last step (and were removed), in joint-slot
+    /// order.
+    #[must_use]
+    pub fn joint_broke_events(&self) -> &[JointBrokeEvent] {
+        self.events.joint_broke.as_slice()
+    }
+
+    /// The approach speed (m/s) above which a pair that begins touching is
+    /// also a hit event.
+    #[must_use]
+    pub fn hit_event_threshold(&self) -> Scalar {
+        self.events.hit_threshold
+    }
+
+    /// Sets the hit-event threshold (m/s; default
+    /// [`DEFAULT_HIT_EVENT_THRESHOLD`](crate::events::DEFAULT_HIT_EVENT_THRESHOLD),
+    /// 1 m/s). A setting of the world, like its handlers: it shapes no future
+    /// step and is not in the snapshot.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] with `"hit event threshold"` when negative; the
+    /// threshold is unchanged.
+    pub fn set_hit_event_threshold(&mut self, speed: Scalar) -> Result<(), Error> {
+        if speed < Scalar::ZERO {
+            return Err(Error::OutOfRange { what: "hit event threshold" });
+        }
+        self.events.hit_threshold = speed;
+        Ok(())
     }
 }

@@ -43,4 +43,7 @@ pub struct WorldStats {
     pub post_step_refused: u64,
     /// Post-step callbacks dropped after the round limit, over all drains.
     pub post_step_dropped: u64,
+    /// Events dropped by full event lists, over all steps (see
+    /// [`crate::events`]).
+    pub events_dropped: u64,
 }

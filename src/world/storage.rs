@@ -9,10 +9,13 @@ use managed::ManagedSlice;
 
 use crate::arbiter::Arbiter;
 use crate::arena::Slot;
-use crate::body::Body;
+use crate::body::{Body, BodyHandle};
 use crate::constraint::{Joint, JointRow};
 #[cfg(feature = "alloc")]
 use crate::error::Error;
+use crate::events::{
+    ContactBeginEvent, ContactEndEvent, ContactHitEvent, JointBrokeEvent, SensorEvent, DEFAULT_EVENTS,
+};
 use crate::geometry::PolygonPath;
 use crate::handler::{PostStepEntry, DEFAULT_POST_STEP_CALLBACKS, EMPTY_POST_STEP};
 use crate::index::Proxy;
@@ -28,6 +31,7 @@ pub struct Capacities {
     pub paths: usize,
     /// Candidate pairs per step and arbiters (pairs of bodies in contact, or kept
     /// for persistence). A stack needs about 2 per body, a dense pile about 4.
+    /// A body overlapping a sensor takes one too (see [`BodyDef::sensor`](crate::BodyDef::sensor)).
     pub contacts: usize,
     /// Built-in joints.
     pub joints: usize,
@@ -36,6 +40,10 @@ pub struct Capacities {
     /// A game that removes bodies from `begin` needs one per body that can land
     /// in one step.
     pub post_step_callbacks: usize,
+    /// Events of each kind one step can report (each of the six lists of
+    /// [`crate::events`] holds this many; more are dropped and counted in
+    /// [`StepReport::events_dropped`](crate::StepReport::events_dropped)).
+    pub events: usize,
 }
 
 impl Default for Capacities {
@@ -67,6 +75,7 @@ impl Capacities {
             self.contacts.checked_mul(Storage::BYTES_PER_CONTACT),
             self.joints.checked_mul(Storage::BYTES_PER_JOINT),
             self.post_step_callbacks.checked_mul(Storage::BYTES_PER_CALLBACK),
+            self.events.checked_mul(Storage::BYTES_PER_EVENT),
         ];
         let mut total = 0usize;
         let mut i = 0;
@@ -94,6 +103,7 @@ impl Capacities {
             contacts: bodies.saturating_mul(4),
             joints: bodies.saturating_mul(2),
             post_step_callbacks: bodies.max(DEFAULT_POST_STEP_CALLBACKS),
+            events: bodies.max(DEFAULT_EVENTS),
         }
     }
 }
@@ -138,6 +148,12 @@ pub struct Storage<'a> {
     pub(crate) contact_scratch: ManagedSlice<'a, ContactScratch>,
     /// The post-step callback queue; its length is the queue's capacity.
     pub(crate) post_step: ManagedSlice<'a, PostStepEntry>,
+    pub(crate) contact_begin: ManagedSlice<'a, ContactBeginEvent>,
+    pub(crate) contact_end: ManagedSlice<'a, ContactEndEvent>,
+    pub(crate) contact_hit: ManagedSlice<'a, ContactHitEvent>,
+    pub(crate) sensor_begin: ManagedSlice<'a, SensorEvent>,
+    pub(crate) sensor_end: ManagedSlice<'a, SensorEvent>,
+    pub(crate) joint_broke: ManagedSlice<'a, JointBrokeEvent>,
 }
 
 impl Storage<'_> {
@@ -165,6 +181,12 @@ impl Storage<'_> {
         size_of::<Slot<Joint>>() + size_of::<(u32, u32)>() + size_of::<JointRow>();
     /// Bytes per post-step queue slot: the function and its key.
     pub const BYTES_PER_CALLBACK: usize = size_of::<PostStepEntry>();
+    /// Bytes per event capacity: one slot in each of the six lists.
+    pub const BYTES_PER_EVENT: usize = size_of::<ContactBeginEvent>()
+        + size_of::<ContactEndEvent>()
+        + size_of::<ContactHitEvent>()
+        + 2 * size_of::<SensorEvent>()
+        + size_of::<JointBrokeEvent>();
 
     /// Heap storage with the given capacities. Every buffer is reserved with
     /// `try_reserve`, so capacities the heap cannot hold are an error, never a
@@ -218,21 +240,41 @@ impl Storage<'_> {
             post_step: ManagedSlice::Owned(filled(c.post_step_callbacks, "post-step callback", || {
                 EMPTY_POST_STEP
             })?),
+            contact_begin: ManagedSlice::Owned(filled(c.events, "event", ContactBeginEvent::default)?),
+            contact_end: ManagedSlice::Owned(filled(c.events, "event", ContactEndEvent::default)?),
+            contact_hit: ManagedSlice::Owned(filled(c.events, "event", ContactHitEvent::default)?),
+            sensor_begin: ManagedSlice::Owned(filled(c.events, "event", SensorEvent::default)?),
+            sensor_end: ManagedSlice::Owned(filled(c.events, "event", SensorEvent::default)?),
+            joint_broke: ManagedSlice::Owned(filled(c.events, "event", JointBrokeEvent::default)?),
         })
     }
 }
+
+const EMPTY_BEGIN: ContactBeginEvent =
+    ContactBeginEvent { body_a: BodyHandle::NULL, body_b: BodyHandle::NULL, normal: Vector2::ZERO };
+const EMPTY_END: ContactEndEvent = ContactEndEvent { body_a: BodyHandle::NULL, body_b: BodyHandle::NULL };
+const EMPTY_HIT: ContactHitEvent = ContactHitEvent {
+    body_a: BodyHandle::NULL,
+    body_b: BodyHandle::NULL,
+    point: Vector2::ZERO,
+    normal: Vector2::ZERO,
+    speed: crate::math::scalar::ZERO,
+};
+const EMPTY_SENSOR: SensorEvent = SensorEvent { sensor: BodyHandle::NULL, visitor: BodyHandle::NULL };
 
 /// Statically sized buffers for a world that needs no allocator: `BODIES` bodies
 /// and as many polygon paths, `CONTACTS` candidate pairs and arbiters (a
 /// multiple of 8), `JOINTS`
 /// built-in joints (default 16), `CALLBACKS` queued post-step callbacks
-/// (default [`DEFAULT_POST_STEP_CALLBACKS`], 64). `new` is `const`, so the
+/// (default [`DEFAULT_POST_STEP_CALLBACKS`], 64), `EVENTS` events of each kind
+/// a step reports (default [`DEFAULT_EVENTS`], 64; see [`crate::events`]). `new` is `const`, so the
 /// buffers can be a `static` (e.g. in a `static_cell::StaticCell`) or a local.
 pub struct WorldBuffers<
     const BODIES: usize,
     const CONTACTS: usize,
     const JOINTS: usize = 16,
     const CALLBACKS: usize = DEFAULT_POST_STEP_CALLBACKS,
+    const EVENTS: usize = DEFAULT_EVENTS,
 > {
     bodies: [Slot<Body>; BODIES],
     paths: [Slot<PolygonPath>; BODIES],
@@ -250,10 +292,21 @@ pub struct WorldBuffers<
     contact_constraints: [ContactConstraint; CONTACTS],
     contact_scratch: [ContactScratch; CONTACTS],
     post_step: [PostStepEntry; CALLBACKS],
+    contact_begin: [ContactBeginEvent; EVENTS],
+    contact_end: [ContactEndEvent; EVENTS],
+    contact_hit: [ContactHitEvent; EVENTS],
+    sensor_begin: [SensorEvent; EVENTS],
+    sensor_end: [SensorEvent; EVENTS],
+    joint_broke: [JointBrokeEvent; EVENTS],
 }
 
-impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize, const CALLBACKS: usize>
-    WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS>
+impl<
+        const BODIES: usize,
+        const CONTACTS: usize,
+        const JOINTS: usize,
+        const CALLBACKS: usize,
+        const EVENTS: usize,
+    > WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS, EVENTS>
 {
     /// Empty buffers.
     ///
@@ -280,6 +333,12 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize, const CALL
             contact_constraints: [ContactConstraint::EMPTY; CONTACTS],
             contact_scratch: [ContactScratch::EMPTY; CONTACTS],
             post_step: [EMPTY_POST_STEP; CALLBACKS],
+            contact_begin: [EMPTY_BEGIN; EVENTS],
+            contact_end: [EMPTY_END; EVENTS],
+            contact_hit: [EMPTY_HIT; EVENTS],
+            sensor_begin: [EMPTY_SENSOR; EVENTS],
+            sensor_end: [EMPTY_SENSOR; EVENTS],
+            joint_broke: [JointBrokeEvent::EMPTY; EVENTS],
         }
     }
 
@@ -302,12 +361,23 @@ impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize, const CALL
             contact_constraints: ManagedSlice::Borrowed(&mut self.contact_constraints[..]),
             contact_scratch: ManagedSlice::Borrowed(&mut self.contact_scratch[..]),
             post_step: ManagedSlice::Borrowed(&mut self.post_step[..]),
+            contact_begin: ManagedSlice::Borrowed(&mut self.contact_begin[..]),
+            contact_end: ManagedSlice::Borrowed(&mut self.contact_end[..]),
+            contact_hit: ManagedSlice::Borrowed(&mut self.contact_hit[..]),
+            sensor_begin: ManagedSlice::Borrowed(&mut self.sensor_begin[..]),
+            sensor_end: ManagedSlice::Borrowed(&mut self.sensor_end[..]),
+            joint_broke: ManagedSlice::Borrowed(&mut self.joint_broke[..]),
         }
     }
 }
 
-impl<const BODIES: usize, const CONTACTS: usize, const JOINTS: usize, const CALLBACKS: usize> Default
-    for WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS>
+impl<
+        const BODIES: usize,
+        const CONTACTS: usize,
+        const JOINTS: usize,
+        const CALLBACKS: usize,
+        const EVENTS: usize,
+    > Default for WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS, EVENTS>
 {
     fn default() -> Self {
         Self::new()

@@ -24,11 +24,11 @@ use arphysics::{
 /// change to one must be deliberate and explained in its commit message.
 pub const GOLDEN_CORE_SCENE: u64 = 0xd736_70b0_80ee_87d8;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_PYRAMID: u64 = 0x9034_ee66_f999_1e80;
+pub const GOLDEN_PYRAMID: u64 = 0x6384_e614_1b7e_63a5;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_MIXED: u64 = 0x3b7d_b0f1_651b_42b7;
+pub const GOLDEN_MIXED: u64 = 0x80bf_350e_1c8d_41f2;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_LONG: u64 = 0xf627_95ae_9435_d1ab;
+pub const GOLDEN_LONG: u64 = 0x3b4d_0f4a_b57a_f9bc;
 
 /// Steps of the core scene.
 pub const CORE_STEPS: u32 = 600;

@@ -106,6 +106,7 @@ pub mod ar {
             contacts: bodies.saturating_mul(scene.contacts_per_body).max(16),
             joints: scene.joints.len().max(1),
             post_step_callbacks: 64,
+            events: 64,
         }
     }
 
