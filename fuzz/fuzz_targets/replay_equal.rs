@@ -5,7 +5,9 @@
 //! World A has the input's capacities; A2 is a second, identical world; B has far
 //! larger capacities on static buffers. A and A2 must agree on everything. B must
 //! agree with A until A reports a full store (a legitimate difference): from then
-//! on B is no longer compared.
+//! on B is no longer compared. A full event list is not such a store: events are
+//! the step's output, not state, so B's larger lists only change the step
+//! report's count of dropped events, and everything else is still compared.
 #![no_main]
 
 use arphysics::{Storage, WorldBuffers};
@@ -49,7 +51,7 @@ fuzz_target!(|input: Input| {
             if a.hit_capacity(&oa) {
                 // A full store in the small world: from here on the worlds may differ.
                 b_live = false;
-            } else if oa != ob {
+            } else if oa.without_dropped_events() != ob.without_dropped_events() {
                 panic!("op {i} {op:?}: capacity changed the outcome: {oa:?} vs {ob:?}");
             } else {
                 assert_eq!(

@@ -1156,6 +1156,21 @@ impl Outcome {
             Self::Err(Error::CapacityFull { .. }) | Self::Steps(_, Some(Error::CapacityFull { .. }))
         )
     }
+
+    /// The outcome with a step report's count of dropped events zeroed. The
+    /// event lists are the step's output, never state: worlds whose event
+    /// capacities differ drop different numbers of events and must agree on
+    /// everything else, the state hash included.
+    #[must_use]
+    pub fn without_dropped_events(self) -> Self {
+        match self {
+            Self::Step(mut r) => {
+                r.events_dropped = 0;
+                Self::Step(r)
+            }
+            other => other,
+        }
+    }
 }
 
 fn handle_outcome<T>(r: Result<Handle<T>, Error>) -> Outcome {
