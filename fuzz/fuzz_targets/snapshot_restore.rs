@@ -47,7 +47,8 @@ fuzz_target!(|input: SnapshotInput| {
     let mut same = true;
     for op in before {
         let (oa, ob) = (a.apply(op), b.apply(op));
-        same &= oa == ob && !a.hit_capacity(&oa);
+        // Events dropped by the smaller event list are output, not state.
+        same &= oa.without_dropped_events() == ob.without_dropped_events() && !a.hit_capacity(&oa);
     }
 
     // Snapshot, run on, rewind, run again: the same outcomes and hashes.
@@ -88,7 +89,13 @@ fuzz_target!(|input: SnapshotInput| {
                 // A full store in the small world: the larger one may differ from here.
                 break;
             }
-            assert_eq!(x.0, y.0, "op {i} after the snapshot ({:?}) differs in the larger world", after[i]);
+            // The larger world's event list may keep events the small one dropped.
+            assert_eq!(
+                x.0.without_dropped_events(),
+                y.0.without_dropped_events(),
+                "op {i} after the snapshot ({:?}) differs in the larger world",
+                after[i]
+            );
             assert_eq!(x.1, y.1, "op {i} after the snapshot ({:?}) differs in the larger world", after[i]);
         }
     }

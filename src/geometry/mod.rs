@@ -8,11 +8,13 @@
 //! (to within a fraction of the last bit) rather than carrying the round-off of a
 //! chain of fixed-point operations.
 
+pub mod capsule;
 pub mod circle;
 pub mod mass;
 pub mod polygon_path;
 pub mod ray;
 
+pub use capsule::{Capsule, Segment};
 pub use circle::{circle_area, circle_unit_inertia, MAX_CIRCLE_RADIUS};
 pub use mass::{MassData, MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};
 pub use polygon_path::{

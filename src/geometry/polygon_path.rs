@@ -85,6 +85,9 @@ pub struct PolygonPath {
     pub(crate) radius: Scalar,
     /// Least distance from the centroid to a face's line (core extent), in m.
     pub(crate) core: Scalar,
+    /// Rounding radius (m): the shape is every point within this distance of the
+    /// stored (core) polygon. 0 for a sharp polygon.
+    pub(crate) rounding: Scalar,
 }
 
 impl PolygonPath {
@@ -232,6 +235,7 @@ impl PolygonPath {
             centroid: from_bits(widen(centroid)),
             radius: Scalar::from_bits(to_i64(ceil_sqrt(radius2))?),
             core: Scalar::ZERO,
+            rounding: Scalar::ZERO,
         };
         path.core =
             path.vertices().iter().zip(path.normals()).map(|(v, n)| n.dot(*v)).min().unwrap_or_default();
@@ -329,6 +333,14 @@ impl PolygonPath {
     #[must_use]
     pub fn core_extent(&self) -> Scalar {
         self.core
+    }
+
+    /// Rounding radius (m): the shape is every point within this distance of
+    /// the stored vertices' polygon (0 for a sharp polygon).
+    #[inline]
+    #[must_use]
+    pub fn rounding(&self) -> Scalar {
+        self.rounding
     }
 }
 
