@@ -170,11 +170,14 @@ fn narrow_phase(name: &str, w: &World<'_>) -> Result<(), arphysics::Error> {
     enum Part<'p> {
         Circle(Scalar),
         Polygon(&'p PolygonPath),
+        /// A shape the scenes here do not use (timed as no contact).
+        Other,
     }
     let part = |b: &Body| -> Result<Part<'_>, arphysics::Error> {
         Ok(match b.shape() {
             arphysics::Shape::Circle { radius } => Part::Circle(radius),
             arphysics::Shape::Polygon(p) => Part::Polygon(w.path(p)?),
+            _ => Part::Other,
         })
     };
     let mut pairs: Vec<(Part<'_>, Transform, Part<'_>, Transform)> = Vec::new();
@@ -189,6 +192,7 @@ fn narrow_phase(name: &str, w: &World<'_>) -> Result<(), arphysics::Error> {
             (Part::Polygon(pa), Part::Polygon(pb)) => collide_polygons(pa, *xa, pb, *xb, margin),
             (Part::Polygon(pa), Part::Circle(rb)) => collide_polygon_circle(pa, *xa, *rb, *xb, margin),
             (Part::Circle(ra), Part::Polygon(pb)) => collide_polygon_circle(pb, *xb, *ra, *xa, margin),
+            _ => Manifold::EMPTY,
         }
     };
     // About a million collisions per sample, so that the CPU clock's tick

@@ -10,7 +10,7 @@
 //! [`PolygonPath`]: crate::geometry::PolygonPath
 
 use crate::arena::{Arena, Handle};
-use crate::geometry::{MassData, PolygonPath};
+use crate::geometry::{Capsule, MassData, PolygonPath, Segment};
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rect, Rot, Transform, Vector2};
 
@@ -37,6 +37,13 @@ pub enum BodyType {
 }
 
 /// The shape of a body.
+///
+/// Every shape is placed about the body's position, its centre of mass: a
+/// circle is centred on it, a polygon path's vertices are stored about their
+/// centroid, and a capsule's or segment's two ends are symmetric about it
+/// (`center1 == −center2`, `point1 == −point2`; the world re-centres the
+/// ends a [`BodyDef`] gives and moves the body by the same offset, see
+/// [`BodyDef::capsule`] and [`BodyDef::segment`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Shape {
     /// A circle of this radius (m) centred on the body's position.
@@ -45,18 +52,28 @@ pub enum Shape {
         radius: Scalar,
     },
     /// A convex polygon: a shared path, its vertices about the body's position.
+    /// A path made with [`PolygonPath::rounded`] has rounded corners.
     Polygon(PathHandle),
+    /// A capsule: the points within its radius of the segment between its two
+    /// centres (a character, a limb, a pill).
+    Capsule(Capsule),
+    /// A line segment: no area, no thickness (ground, walls, terrain). Segments
+    /// do not collide with segments.
+    Segment(Segment),
 }
 
 impl Shape {
-    /// The manual's body-type order used to canonicalise pairs: circles before
-    /// polygons.
+    /// The order used to canonicalise pairs (shape A is the lower rank):
+    /// circles, then capsules, then polygons, then segments. The manual's
+    /// circle-before-polygon order is kept.
     #[inline]
     #[must_use]
     pub fn kind_rank(&self) -> u8 {
         match self {
             Self::Circle { .. } => 0,
-            Self::Polygon(_) => 1,
+            Self::Capsule(_) => 1,
+            Self::Polygon(_) => 2,
+            Self::Segment(_) => 3,
         }
     }
 }
@@ -448,14 +465,30 @@ impl Body {
     }
 }
 
+/// The bounding radius of `shape` about the body's position (m): 0 for a
+/// polygon whose path is gone.
+pub(crate) fn shape_radius(shape: Shape, paths: &Arena<'_, PolygonPath>) -> Scalar {
+    match shape {
+        Shape::Circle { radius } => radius,
+        Shape::Polygon(h) => paths.get(h).map_or(ZERO, PolygonPath::radius),
+        Shape::Capsule(c) => c.bounding_radius(),
+        Shape::Segment(s) => s.bounding_radius(),
+    }
+}
+
 /// The world bounding box of a body at its current transform.
 pub(crate) fn compute_aabb(b: &Body, paths: &Arena<'_, PolygonPath>) -> Rect {
     match b.shape {
         Shape::Circle { radius } => Rect::from_center(b.position, Vector2::new(radius, radius)),
         Shape::Polygon(h) => match paths.get(h) {
-            Some(p) => polygon_aabb(p.vertices(), b.transform()),
+            Some(p) => {
+                let r = p.rounding();
+                polygon_aabb(p.vertices(), b.transform()).expand(r)
+            }
             None => Rect::from_center(b.position, Vector2::new(b.radius, b.radius)),
         },
+        Shape::Capsule(c) => c.aabb(b.transform()),
+        Shape::Segment(s) => s.aabb(b.transform()),
     }
 }
 

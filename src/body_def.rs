@@ -4,6 +4,7 @@
 //! ([`World::add_body`](crate::World::add_body)).
 
 use crate::body::{BodyType, PathHandle, Shape};
+use crate::geometry::{Capsule, Segment};
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rot, Vector2};
 
@@ -78,7 +79,9 @@ pub struct BodyDef {
     pub shape: Shape,
     /// Static, kinematic or dynamic (default dynamic).
     pub body_type: BodyType,
-    /// Position of the centre of mass, m (default origin).
+    /// Position of the centre of mass, m (default origin). For a capsule or a
+    /// segment, the point its ends are given from: the body is placed at the
+    /// ends' midpoint (see [`BodyDef::capsule`]).
     pub position: Vector2,
     /// Rotation (default none).
     pub rotation: Rot,
@@ -131,6 +134,42 @@ impl BodyDef {
     #[must_use]
     pub fn polygon(path: PathHandle) -> Self {
         Self::with_shape(Shape::Polygon(path))
+    }
+
+    /// A dynamic capsule (made with [`Capsule::new`]), whose centres are given
+    /// relative to [`position`](Self::position) in the body's frame.
+    ///
+    /// A body's position is its centre of mass, so the world places the body
+    /// at the midpoint of the two centres and stores them about it, exactly
+    /// symmetric (the first centre moves by at most 2^-32 m when the centres'
+    /// sum is odd in the last bit): the capsule lands where the definition
+    /// puts it, and [`Body::position`](crate::Body::position) reports the
+    /// midpoint. A capsule of zero length is a circle.
+    ///
+    /// ```
+    /// use arphysics::{BodyDef, Capsule, Scalar, Vector2};
+    /// // A 1.8 m tall character, 0.3 m wide: upright, feet at y = 0.
+    /// let (r, foot, head) = (Scalar::lit("0.3"), Scalar::lit("0.3"), Scalar::lit("1.5"));
+    /// let body = Capsule::new(Vector2::new(Scalar::ZERO, foot), Vector2::new(Scalar::ZERO, head), r)
+    ///     .map(|c| BodyDef::capsule(c).fixed_rotation(true));
+    /// assert!(body.is_ok());
+    /// ```
+    #[must_use]
+    pub fn capsule(capsule: Capsule) -> Self {
+        Self::with_shape(Shape::Capsule(capsule))
+    }
+
+    /// A **static** segment (made with [`Segment::new`]), whose ends are given
+    /// relative to [`position`](Self::position): ground, walls, ramps. Placed
+    /// as [`capsule`](Self::capsule) places its centres (the body goes to the
+    /// midpoint). A segment has no area: made dynamic it needs a mass
+    /// ([`MassSpec::Mass`], a thin rod's inertia); a density is an error.
+    /// Segments never collide with segments.
+    #[must_use]
+    pub fn segment(segment: Segment) -> Self {
+        let mut def = Self::with_shape(Shape::Segment(segment));
+        def.body_type = BodyType::Static;
+        def
     }
 
     fn with_shape(shape: Shape) -> Self {

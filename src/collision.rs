@@ -19,14 +19,18 @@ use crate::collide::{collide_circles, collide_polygon_circle, collide_polygons, 
 use crate::constraint::{Joint, JointMarker};
 use crate::error::Error;
 use crate::events::{ContactBeginEvent, ContactHitEvent, Events, TOUCH_DISTANCE};
-use crate::geometry::PolygonPath;
+use crate::geometry::{Capsule, PolygonPath, Segment};
 use crate::handler::{CallbackContext, HandlerTable, PostStepQueue};
 use crate::index::{
     dedup_sorted, sweep_sorted, BruteForceIndex, PairSink, Proxy, SortAndSweepIndex, SpatialIndex,
     AUTO_THRESHOLD,
 };
 use crate::limits::SPECULATIVE_DISTANCE;
-use crate::math::{Rect, Scalar, Vector2};
+use crate::math::{Rect, Scalar, Transform, Vector2};
+use crate::pending::{
+    collide_capsule_circle, collide_capsules, collide_polygon_capsule, collide_segment_capsule,
+    collide_segment_circle, collide_segment_polygon,
+};
 use crate::solver::SolverBody;
 use crate::step::StepContext;
 
@@ -89,18 +93,27 @@ impl BroadPhase<'_> {
 /// True when the filters let two bodies collide: at least one dynamic body
 /// (both infinite-mass bodies ⇒ skip), no shared collision-group bit (the
 /// manual's rule, a veto), and Box2D's category/mask/group rule
-/// ([`CollisionFilter::accepts`](crate::CollisionFilter::accepts)).
+/// ([`CollisionFilter::accepts`](crate::CollisionFilter::accepts)); never
+/// two segments.
 pub(crate) fn should_collide(a: &Body, b: &Body) -> bool {
     (a.body_type == BodyType::Dynamic || b.body_type == BodyType::Dynamic)
         && (a.collision_groups & b.collision_groups) == 0
         && a.filter.accepts(&b.filter)
+        && !both_segments(a, b)
+}
+
+/// True when both bodies are segments (which never collide).
+#[inline]
+fn both_segments(a: &Body, b: &Body) -> bool {
+    matches!((a.shape, b.shape), (Shape::Segment(_), Shape::Segment(_)))
 }
 
 /// True when two bodies make a pair the engine tracks: a contact pair
 /// ([`should_collide`]), or a sensor pair: exactly one sensor, at least one
 /// moving body (a static sensor detects kinematic bodies too), and both
 /// filters passed as for a contact pair (the collision groups and the
-/// category/mask/group rule). Sensors never detect sensors.
+/// category/mask/group rule). Sensors never detect sensors, and segments
+/// never meet segments (neither has an inside to push out of).
 pub(crate) fn wants_pair(a: &Body, b: &Body) -> bool {
     if !a.sensor && !b.sensor {
         return should_collide(a, b);
@@ -109,7 +122,10 @@ pub(crate) fn wants_pair(a: &Body, b: &Body) -> bool {
         return false;
     }
     let moving = a.body_type != BodyType::Static || b.body_type != BodyType::Static;
-    moving && (a.collision_groups & b.collision_groups) == 0 && a.filter.accepts(&b.filter)
+    moving
+        && !both_segments(a, b)
+        && (a.collision_groups & b.collision_groups) == 0
+        && a.filter.accepts(&b.filter)
 }
 
 /// True when one of the two bodies is a sensor: their arbiter tracks overlap
@@ -678,26 +694,93 @@ fn proxy(ctx: &StepContext, b: &Body) -> Proxy {
 
 /// The contact manifold of two bodies in canonical order (normal from A to B),
 /// with points reported up to `margin` apart.
+#[inline]
 fn collide_bodies(a: &Body, b: &Body, paths: &Arena<'_, PolygonPath>, margin: Scalar) -> Manifold {
-    let (xa, xb) = (a.transform(), b.transform());
-    match (a.shape, b.shape) {
-        (Shape::Circle { radius: ra }, Shape::Circle { radius: rb }) => {
-            collide_circles(ra, xa, rb, xb, margin)
+    match (ShapeRef::of(&a.shape, paths), ShapeRef::of(&b.shape, paths)) {
+        (Some(sa), Some(sb)) => collide_canonical(sa, a.transform(), sb, b.transform(), margin),
+        _ => Manifold::EMPTY,
+    }
+}
+
+/// A shape with its polygon path looked up: what the pair functions take.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum ShapeRef<'p> {
+    /// A circle of this radius about the origin of its transform.
+    Circle(Scalar),
+    /// A capsule.
+    Capsule(&'p Capsule),
+    /// A convex (possibly rounded) polygon.
+    Polygon(&'p PolygonPath),
+    /// A segment.
+    Segment(&'p Segment),
+}
+
+impl<'p> ShapeRef<'p> {
+    /// The body's shape; `None` for a polygon whose path is gone.
+    #[inline]
+    pub(crate) fn of(shape: &'p Shape, paths: &'p Arena<'_, PolygonPath>) -> Option<Self> {
+        Some(match shape {
+            Shape::Circle { radius } => Self::Circle(*radius),
+            Shape::Capsule(c) => Self::Capsule(c),
+            Shape::Polygon(h) => Self::Polygon(paths.get(*h)?),
+            Shape::Segment(s) => Self::Segment(s),
+        })
+    }
+
+    /// [`Shape::kind_rank`] of the shape.
+    #[inline]
+    pub(crate) fn rank(&self) -> u8 {
+        match self {
+            Self::Circle(_) => 0,
+            Self::Capsule(_) => 1,
+            Self::Polygon(_) => 2,
+            Self::Segment(_) => 3,
         }
-        (Shape::Polygon(pa), Shape::Polygon(pb)) => match (paths.get(pa), paths.get(pb)) {
-            (Some(pa), Some(pb)) => collide_polygons(pa, xa, pb, xb, margin),
-            _ => Manifold::EMPTY,
-        },
-        (Shape::Polygon(pa), Shape::Circle { radius }) => match paths.get(pa) {
-            Some(p) => collide_polygon_circle(p, xa, radius, xb, margin),
-            None => Manifold::EMPTY,
-        },
-        (Shape::Circle { radius }, Shape::Polygon(pb)) => match paths.get(pb) {
-            // Computed with the polygon as A, then flipped so the normal runs from
-            // the circle (A) to the polygon (B).
-            Some(p) => flip(collide_polygon_circle(p, xb, radius, xa, margin)),
-            None => Manifold::EMPTY,
-        },
+    }
+}
+
+/// The contact manifold of two shapes in any order (normal from `a` to `b`).
+pub(crate) fn collide_shapes(
+    a: ShapeRef<'_>,
+    xa: Transform,
+    b: ShapeRef<'_>,
+    xb: Transform,
+    margin: Scalar,
+) -> Manifold {
+    if b.rank() < a.rank() {
+        flip(collide_canonical(b, xb, a, xa, margin))
+    } else {
+        collide_canonical(a, xa, b, xb, margin)
+    }
+}
+
+/// The contact manifold of two shapes in canonical order (`a.rank() ≤
+/// b.rank()`, see [`Shape::kind_rank`]); the functions that take the
+/// higher-ranked shape first are flipped so the normal runs from A to B.
+#[inline]
+fn collide_canonical(
+    a: ShapeRef<'_>,
+    xa: Transform,
+    b: ShapeRef<'_>,
+    xb: Transform,
+    margin: Scalar,
+) -> Manifold {
+    use ShapeRef as S;
+    match (a, b) {
+        (S::Circle(ra), S::Circle(rb)) => collide_circles(ra, xa, rb, xb, margin),
+        (S::Polygon(pa), S::Polygon(pb)) => collide_polygons(pa, xa, pb, xb, margin),
+        // The pair functions take the polygon first: computed that way, then
+        // flipped so the normal runs from the circle (A) to the polygon (B).
+        (S::Circle(r), S::Polygon(p)) => flip(collide_polygon_circle(p, xb, r, xa, margin)),
+        (S::Circle(r), S::Capsule(c)) => flip(collide_capsule_circle(c, xb, r, xa, margin)),
+        (S::Circle(r), S::Segment(sg)) => flip(collide_segment_circle(sg, xb, r, xa, margin)),
+        (S::Capsule(ca), S::Capsule(cb)) => collide_capsules(ca, xa, cb, xb, margin),
+        (S::Capsule(c), S::Polygon(p)) => flip(collide_polygon_capsule(p, xb, c, xa, margin)),
+        (S::Capsule(c), S::Segment(sg)) => flip(collide_segment_capsule(sg, xb, c, xa, margin)),
+        (S::Polygon(p), S::Segment(sg)) => flip(collide_segment_polygon(sg, xb, p, xa, margin)),
+        // Not canonical (a caller's mistake) or two segments, which never
+        // collide (as in Box2D): the pair filters drop those pairs first.
+        _ => Manifold::EMPTY,
     }
 }
 

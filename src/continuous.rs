@@ -88,6 +88,9 @@ fn core_extent(b: &Body, paths: &Arena<'_, PolygonPath>) -> Scalar {
     match b.shape {
         Shape::Circle { radius } => radius,
         Shape::Polygon(h) => paths.get(h).map_or(ZERO, PolygonPath::core_extent),
+        // The thickness a capsule keeps whatever its length; a segment has none.
+        Shape::Capsule(c) => c.radius(),
+        Shape::Segment(_) => ZERO,
     }
 }
 
@@ -96,6 +99,7 @@ fn swept<'p>(b: &Body, paths: &'p Arena<'_, PolygonPath>) -> Option<Swept<'p>> {
     match b.shape {
         Shape::Circle { radius } => Some(Swept::Circle(radius)),
         Shape::Polygon(h) => paths.get(h).map(Swept::Polygon),
+        Shape::Capsule(_) | Shape::Segment(_) => None,
     }
 }
 

@@ -207,6 +207,8 @@ pub mod hook;
 pub mod index;
 pub mod limits;
 pub mod math;
+#[doc(hidden)]
+pub mod pending;
 pub mod query;
 pub mod snapshot;
 mod solver;
@@ -228,7 +230,7 @@ pub use force::{
     ForceGenerator, Generator, GeneratorMut, GravityForceGenerator, GravityToPointForceGenerator,
     LinearForceGenerator, Targets,
 };
-pub use geometry::{MassData, PolygonPath};
+pub use geometry::{Capsule, MassData, PolygonPath, Segment};
 pub use handler::{CallbackContext, ClosureHandler, CollisionHandler, FnHandler, Handler, PostStepFn};
 pub use hook::Hook;
 pub use index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};

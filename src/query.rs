@@ -8,12 +8,13 @@
 //! the world as it was after the last step, and frozen (out-of-bounds) bodies too.
 
 use crate::body::{Body, BodyHandle, Shape};
-use crate::collide::{collide_circles, collide_polygon_circle, collide_polygons, Manifold};
+use crate::collision::{collide_shapes, ShapeRef};
 use crate::error::Error;
 use crate::geometry::ray::{polygon_contains, ray_circle, ray_polygon};
-use crate::geometry::PolygonPath;
+use crate::geometry::{Capsule, PolygonPath, Segment};
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rect, Transform, Vector2};
+use crate::pending::{capsule_contains, ray_capsule, ray_segment};
 use crate::world::World;
 
 /// Which bodies a query sees.
@@ -134,8 +135,34 @@ pub struct RayHit {
 pub enum QueryShape<'p> {
     /// A circle of this radius (m).
     Circle(Scalar),
-    /// A convex polygon.
+    /// A convex (possibly rounded) polygon.
     Polygon(&'p PolygonPath),
+    /// A capsule (its centres relative to the transform's origin).
+    Capsule(Capsule),
+    /// A segment (its ends relative to the transform's origin).
+    Segment(Segment),
+}
+
+impl QueryShape<'_> {
+    /// The shape as the pair functions take it.
+    fn as_ref(&self) -> ShapeRef<'_> {
+        match self {
+            Self::Circle(r) => ShapeRef::Circle(*r),
+            Self::Polygon(p) => ShapeRef::Polygon(p),
+            Self::Capsule(c) => ShapeRef::Capsule(c),
+            Self::Segment(s) => ShapeRef::Segment(s),
+        }
+    }
+
+    /// Distance from the transform's origin that bounds the shape (m).
+    fn reach(&self) -> Scalar {
+        match self {
+            Self::Circle(r) => *r,
+            Self::Polygon(p) => p.radius(),
+            Self::Capsule(c) => c.bounding_radius(),
+            Self::Segment(s) => s.bounding_radius(),
+        }
+    }
 }
 
 impl<'a> World<'a> {
@@ -152,6 +179,8 @@ impl<'a> World<'a> {
         let hit = match b.shape {
             Shape::Circle { radius } => ray_circle(from, dir, length, b.position, radius),
             Shape::Polygon(h) => ray_polygon(from, dir, length, self.paths.get(h)?, b.transform()),
+            Shape::Capsule(c) => ray_capsule(from, dir, length, &c, b.transform()),
+            Shape::Segment(sg) => ray_segment(from, dir, length, &sg, b.transform()),
         }?;
         Some((hit.distance, hit.normal))
     }
@@ -234,6 +263,9 @@ impl<'a> World<'a> {
                     Shape::Polygon(h) => {
                         self.paths.get(h).is_some_and(|p| polygon_contains(p, b.transform(), point))
                     }
+                    Shape::Capsule(c) => capsule_contains(&c, b.transform(), point),
+                    // No area: a segment contains no point.
+                    Shape::Segment(_) => false,
                 }
         });
         collect(found.map(|(h, _)| h), out)
@@ -269,32 +301,19 @@ impl<'a> World<'a> {
         filter: QueryFilter,
         out: &mut [BodyHandle],
     ) -> Result<usize, Error> {
-        let reach = match shape {
-            QueryShape::Circle(r) if r <= ZERO => return Err(Error::OutOfRange { what: "radius" }),
-            QueryShape::Circle(r) => r,
-            QueryShape::Polygon(p) => p.radius(),
-        };
+        if let QueryShape::Circle(r) = shape {
+            if r <= ZERO {
+                return Err(Error::OutOfRange { what: "radius" });
+            }
+        }
+        let reach = shape.reach();
         let area = Rect::from_center(xf.p, Vector2::new(reach, reach));
         let found = self.bodies.iter().filter(|(h, b)| {
             if !filter.accepts(*h, b) || !b.aabb.overlaps(area) {
                 return false;
             }
-            let m = match (shape, b.shape) {
-                (QueryShape::Circle(r), Shape::Circle { radius }) => {
-                    collide_circles(r, xf, radius, b.transform(), ZERO)
-                }
-                (QueryShape::Circle(r), Shape::Polygon(h)) => match self.paths.get(h) {
-                    Some(p) => collide_polygon_circle(p, b.transform(), r, xf, ZERO),
-                    None => Manifold::EMPTY,
-                },
-                (QueryShape::Polygon(q), Shape::Circle { radius }) => {
-                    collide_polygon_circle(q, xf, radius, b.transform(), ZERO)
-                }
-                (QueryShape::Polygon(q), Shape::Polygon(h)) => match self.paths.get(h) {
-                    Some(p) => collide_polygons(q, xf, p, b.transform(), ZERO),
-                    None => Manifold::EMPTY,
-                },
-            };
+            let Some(body_shape) = ShapeRef::of(&b.shape, &self.paths) else { return false };
+            let m = collide_shapes(shape.as_ref(), xf, body_shape, b.transform(), ZERO);
             m.points().iter().any(|p| p.separation <= ZERO)
         });
         Ok(collect(found.map(|(h, _)| h), out))

@@ -9,7 +9,7 @@
 
 mod golden_scenes;
 
-use golden_scenes::{Outcome, GOLDEN_CORE_SCENE, GOLDEN_LONG, GOLDEN_MIXED, GOLDEN_PYRAMID};
+use golden_scenes::{Outcome, GOLDEN_CORE_SCENE, GOLDEN_LONG, GOLDEN_MIXED, GOLDEN_PYRAMID, GOLDEN_SHAPES};
 
 fn report(name: &str, steps: u32, out: &Outcome) {
     println!("{name} hash after {steps} steps: {:#018x} ({out:?})", out.hash);
@@ -41,4 +41,11 @@ fn long_running_scene_hash_after_2000_steps_is_the_committed_constant() {
     let out = golden_scenes::long_running().expect("long-running scene");
     report("long-running scene", golden_scenes::LONG_STEPS, &out);
     assert_eq!(out.hash, GOLDEN_LONG);
+}
+
+#[test]
+fn every_shape_scene_hash_is_the_committed_constant() {
+    let out = golden_scenes::shapes().expect("every-shape scene");
+    report("every-shape scene", golden_scenes::SHAPES_STEPS, &out);
+    assert_eq!(out.hash, GOLDEN_SHAPES);
 }

@@ -4,8 +4,8 @@
 //! on every machine. Floats appear only in the viewport, which is for drawing.
 
 use arphysics::{
-    BodyDef, BodyHandle, Capacities, Error, GravityForceGenerator, JointDef, JointKind, PathHandle,
-    PolygonPath, Rect, Rot, Scalar, Vector2, World, WorldDef,
+    BodyDef, BodyHandle, Capacities, Capsule, Error, GravityForceGenerator, JointDef, JointKind, PathHandle,
+    PolygonPath, Rect, Rot, Scalar, Segment, Vector2, World, WorldDef,
 };
 
 /// `n` centimetres (or centiradians), exactly.
@@ -85,6 +85,20 @@ impl Shapes {
         };
         def.position(p).angle(cm(rng.range(-157, 157))).angular_velocity(cm(rng.range(-200, 200)))
     }
+
+    /// A random shape of every kind: those of [`random`](Self::random), plus
+    /// capsules (pills and long ones) and rounded boxes (`rounded`, a path).
+    pub fn random_any(&self, rng: &mut Rng, p: Vector2, rounded: PathHandle) -> Result<BodyDef, Error> {
+        let def = match rng.below(8) {
+            0 | 1 => {
+                let half = rng.range(10, 60);
+                BodyDef::capsule(Capsule::new(at(-half, 0), at(half, 0), cm(rng.range(18, 35)))?)
+            }
+            2 => BodyDef::polygon(rounded),
+            _ => return Ok(self.random(rng, p)),
+        };
+        Ok(def.position(p).angle(cm(rng.range(-157, 157))).angular_velocity(cm(rng.range(-200, 200))))
+    }
 }
 
 /// A scene being simulated: its world and what it still adds as it runs.
@@ -105,6 +119,9 @@ struct Spawner {
     y: i32,
     /// Extra: a cannonball at this frame, from (x, y) cm with velocity (m/s).
     cannonball: Option<(u32, Vector2, Vector2)>,
+    /// Draw from every shape kind, rounded boxes from this path
+    /// ([`Shapes::random_any`]).
+    any_kind: Option<PathHandle>,
 }
 
 impl Running {
@@ -123,7 +140,10 @@ impl Running {
             && (frame - s.start) / s.every < s.count
         {
             let p = at(s.rng.range(s.x.0, s.x.1), s.y);
-            let def = s.shapes.random(&mut s.rng, p);
+            let def = match s.any_kind {
+                Some(rounded) => s.shapes.random_any(&mut s.rng, p, rounded)?,
+                None => s.shapes.random(&mut s.rng, p),
+            };
             self.world.add_body(def)?;
         }
         Ok(())
@@ -169,6 +189,13 @@ pub const SCENES: &[Scene] = &[
         seconds: 10,
         view: (-15.0, -1.0, 15.0, 27.0),
         build: rain,
+    },
+    Scene {
+        name: "terrain",
+        about: "capsules, rounded boxes and every other shape raining onto hills of segments",
+        seconds: 10,
+        view: (-21.0, -1.0, 21.0, 24.0),
+        build: terrain,
     },
 ];
 
@@ -273,8 +300,17 @@ fn lively() -> Result<Running, Error> {
         }
     }
     // …and more raining in over the first three seconds.
-    let spawn =
-        Spawner { shapes, rng, start: 30, every: 8, count: 20, x: (-1800, 0), y: 2000, cannonball: None };
+    let spawn = Spawner {
+        shapes,
+        rng,
+        start: 30,
+        every: 8,
+        count: 20,
+        x: (-1800, 0),
+        y: 2000,
+        cannonball: None,
+        any_kind: None,
+    };
     Ok(Running { world: w, spawn: Some(spawn) })
 }
 
@@ -285,8 +321,17 @@ fn pyramid() -> Result<Running, Error> {
     let shapes = Shapes::add(&mut w)?;
     add_pyramid(&mut w, shapes.unit_box, 20, 0)?;
     let cannonball = Some((180, at(-2000, 300), Vector2::from_int(30, 4)));
-    let spawn =
-        Spawner { shapes, rng: Rng::new(1), start: 0, every: 1, count: 0, x: (0, 0), y: 0, cannonball };
+    let spawn = Spawner {
+        shapes,
+        rng: Rng::new(1),
+        start: 0,
+        every: 1,
+        count: 0,
+        x: (0, 0),
+        y: 0,
+        cannonball,
+        any_kind: None,
+    };
     Ok(Running { world: w, spawn: Some(spawn) })
 }
 
@@ -314,6 +359,7 @@ fn chain() -> Result<Running, Error> {
         x: (400, 1600),
         y: 1800,
         cannonball: None,
+        any_kind: None,
     };
     Ok(Running { world: w, spawn: Some(spawn) })
 }
@@ -338,6 +384,39 @@ fn rain() -> Result<Running, Error> {
         x: (-1100, 1100),
         y: 2500,
         cannonball: None,
+        any_kind: None,
+    };
+    Ok(Running { world: w, spawn: Some(spawn) })
+}
+
+/// Rolling hills of static segments (one body per segment, ends shared
+/// exactly), a rounded ledge, and every shape kind raining down: capsules
+/// roll and slide, rounded boxes tumble, the sharp shapes settle in the
+/// hollows.
+fn terrain() -> Result<Running, Error> {
+    let mut w = world(200, 0)?;
+    // Heights (cm) of the hills' corners, 2 m apart from x = −20 m.
+    const HEIGHTS: [i32; 21] =
+        [900, 600, 350, 180, 100, 90, 140, 260, 300, 220, 120, 60, 40, 80, 180, 320, 360, 300, 420, 650, 900];
+    for (i, pair) in HEIGHTS.windows(2).enumerate() {
+        let x = -2000 + 200 * i as i32;
+        let seg = Segment::new(at(x, pair[0]), at(x + 200, pair[1]))?;
+        w.add_body(BodyDef::segment(seg).friction(cm(50)))?;
+    }
+    let ledge = w.add_path(PolygonPath::rounded_rectangle(cm(400), cm(60), cm(25))?)?;
+    w.add_body(BodyDef::polygon(ledge).position(at(-900, 900)).angle(cm(-25)).static_body())?;
+    let rounded = w.add_path(PolygonPath::rounded_rectangle(cm(90), cm(70), cm(15))?)?;
+    let shapes = Shapes::add(&mut w)?;
+    let spawn = Spawner {
+        shapes,
+        rng: Rng::new(19),
+        start: 0,
+        every: 5,
+        count: 120,
+        x: (-1800, 1800),
+        y: 2200,
+        cannonball: None,
+        any_kind: Some(rounded),
     };
     Ok(Running { world: w, spawn: Some(spawn) })
 }

@@ -23,7 +23,10 @@ struct Look {
 
 enum Outline {
     Circle(f64),
-    Polygon(Vec<(f64, f64)>),
+    /// The core polygon and the rounding radius (0 for a sharp polygon).
+    Polygon(Vec<(f64, f64)>, f64),
+    /// Two centres and the radius (0 for a segment, drawn as a thin line).
+    Capsule((f64, f64), (f64, f64), f64),
 }
 
 /// One body's poses: x, y (m) and the angle in degrees, unwrapped so that the
@@ -75,8 +78,14 @@ fn colour(body: &Body, world: &World<'_>, jointed: bool) -> (Outline, &'static s
                 (_, 6) => "#9b72cf",
                 _ => "#6c757d",
             };
-            (Outline::Polygon(vertices), fill)
+            let rounding = world.path(path).map_or(0.0, |p| p.rounding().to_num());
+            (Outline::Polygon(vertices, rounding), fill)
         }
+        Shape::Capsule(c) => {
+            let fill = if jointed { "#8d6e63" } else { "#f28482" };
+            (Outline::Capsule(xy(c.center1()), xy(c.center2()), c.radius().to_num()), fill)
+        }
+        Shape::Segment(sg) => (Outline::Capsule(xy(sg.point1()), xy(sg.point2()), 0.0), "#6c757d"),
     }
 }
 
@@ -290,9 +299,34 @@ fn shape(look: &Look) -> String {
         Outline::Circle(r) => {
             format!(r#"<circle r="{r}" fill="{f}"/><path d="M0 0H{r}"/>"#, r = num(*r, 3), f = look.fill)
         }
-        Outline::Polygon(v) => {
+        Outline::Polygon(v, rounding) => {
             let points: Vec<String> = v.iter().map(|p| format!("{},{}", num(p.0, 3), num(p.1, 3))).collect();
-            format!(r#"<polygon points="{}" fill="{}"/>"#, points.join(" "), look.fill)
+            // A rounded polygon is its core stroked with round joins, 2r wide.
+            let stroke = if *rounding > 0.0 {
+                format!(
+                    r#" stroke="{}" stroke-width="{}" stroke-linejoin="round""#,
+                    look.fill,
+                    num(2.0 * rounding, 3)
+                )
+            } else {
+                String::new()
+            };
+            format!(r#"<polygon points="{}" fill="{}"{stroke}/>"#, points.join(" "), look.fill)
+        }
+        Outline::Capsule(a, b, r) => {
+            // A capsule is its core segment stroked with round caps, 2r wide;
+            // a segment a thin line.
+            let width = if *r > 0.0 { 2.0 * r } else { 0.08 };
+            let cap = if *r > 0.0 { "round" } else { "butt" };
+            format!(
+                r#"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="{}" stroke-linecap="{cap}"/>"#,
+                num(a.0, 3),
+                num(a.1, 3),
+                num(b.0, 3),
+                num(b.1, 3),
+                look.fill,
+                num(width, 3)
+            )
         }
     }
 }

@@ -17,7 +17,7 @@ use arphysics::index::SortAndSweepIndex;
 use arphysics::query::{QueryFilter, QueryShape, RayHit};
 use arphysics::CollisionFilter;
 use arphysics::{
-    Arbiter, Body, BodyDef, BodyHandle, BodyType, CallbackContext, Capacities, ConstraintHandle, Error,
+    Arbiter, Body, BodyDef, Capsule, Segment, Shape, BodyHandle, BodyType, CallbackContext, Capacities, ConstraintHandle, Error,
     FnHandler, ForceGenerator, Generator, GeneratorHandle, GeneratorMut, GravityForceGenerator,
     GravityToPointForceGenerator, Handle, Handler, Hook, Index, Joint, JointDef, JointHandle, JointKind,
     LinearForceGenerator, MaxTorque, Motor, PairSink, PathHandle, PolygonPath, Proxy, Rect, Rot, Scalar,
@@ -325,6 +325,10 @@ pub enum PathSpec {
     Points(Vec<V>),
     /// A regular n-gon (n = 3 … 10) of this radius: valid hulls, some too big.
     Regular(u8, S),
+    /// A rounded rectangle: width, height, rounding radius.
+    RoundedRectangle(S, S, S),
+    /// The hull of the points with rounded corners.
+    RoundedPoints(Vec<V>, S),
 }
 
 impl PathSpec {
@@ -350,6 +354,11 @@ impl PathSpec {
                     .collect();
                 PolygonPath::new(&pts)
             }
+            Self::RoundedRectangle(w, h, r) => PolygonPath::rounded_rectangle(w.get(), h.get(), r.get()),
+            Self::RoundedPoints(ps, r) => {
+                let pts: Vec<Vector2> = ps.iter().take(24).map(|p| p.get()).collect();
+                PolygonPath::rounded(&pts, r.get())
+            }
         }
     }
 }
@@ -359,6 +368,21 @@ impl PathSpec {
 pub enum ShapeSpec {
     Circle(S),
     Polygon(HandleRef),
+    /// Two centres and a radius (off-centre, zero-length and bad ones too).
+    Capsule(V, V, S),
+    /// Two ends.
+    Segment(V, V),
+}
+
+impl ShapeSpec {
+    /// The capsule or segment, or the error its constructor gives.
+    fn line_shape(&self) -> Option<Result<Shape, Error>> {
+        match self {
+            Self::Capsule(a, b, r) => Some(Capsule::new(a.get(), b.get(), r.get()).map(Shape::Capsule)),
+            Self::Segment(a, b) => Some(Segment::new(a.get(), b.get()).map(Shape::Segment)),
+            _ => None,
+        }
+    }
 }
 
 /// A rotation.
@@ -410,6 +434,13 @@ impl BodySpec {
         let mut d = match self.shape {
             ShapeSpec::Circle(r) => BodyDef::circle(r.get()),
             ShapeSpec::Polygon(h) => BodyDef::polygon(h.get(paths)),
+            // A capsule or segment the constructor refuses: a circle of no
+            // radius, which the world refuses in turn.
+            ShapeSpec::Capsule(..) | ShapeSpec::Segment(..) => match self.shape.line_shape() {
+                Some(Ok(Shape::Capsule(c))) => BodyDef::capsule(c),
+                Some(Ok(Shape::Segment(sg))) => BodyDef::segment(sg),
+                _ => BodyDef::circle(Scalar::ZERO),
+            },
         };
         d = d.body_type(match self.body_type {
             TypeSpec::Static => BodyType::Static,
@@ -1676,6 +1707,12 @@ impl<'w> Runner<'w> {
                             QueryShape::Polygon(&path)
                         }
                         Err(e) => return Outcome::Err(e),
+                    },
+                    ShapeSpec::Capsule(..) | ShapeSpec::Segment(..) => match shape.line_shape() {
+                        Some(Ok(Shape::Capsule(c))) => QueryShape::Capsule(c),
+                        Some(Ok(Shape::Segment(sg))) => QueryShape::Segment(sg),
+                        Some(Err(e)) => return Outcome::Err(e),
+                        _ => return Outcome::Err(Error::OutOfRange { what: "query shape" }),
                     },
                 };
                 match self.world.query_shape(shape, xf, f.get(), &mut out[..len]) {

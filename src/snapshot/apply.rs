@@ -8,8 +8,8 @@ use super::write::Props;
 use super::{NO_LINK, TOUCHING};
 use crate::arbiter::{Arbiter, ArbiterState};
 use crate::arena::NO_SLOT;
-use crate::body::compute_aabb;
-use crate::body::{Body, BodyHandle, Shape};
+use crate::body::{compute_aabb, shape_radius};
+use crate::body::{Body, BodyHandle};
 use crate::geometry::MassData;
 use crate::math::scalar::{Scalar, ZERO};
 use crate::world::World;
@@ -33,10 +33,7 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
         if r.live() {
             let Ok(p) = l.props(r.index()) else { continue };
             let mut body = body_from(&p, &r, &mut recips);
-            body.radius = match p.shape {
-                Shape::Circle { radius } => radius,
-                Shape::Polygon(h) => w.paths.get(h).map_or(ZERO, |path| path.radius()),
-            };
+            body.radius = shape_radius(p.shape, &w.paths);
             body.aabb = compute_aabb(&body, &w.paths);
             w.bodies.write_slot(i, r.generation, NO_SLOT, Some(body), false);
         } else {

@@ -22,6 +22,7 @@ use crate::error::Error;
 use crate::force::{
     Generator, GravityForceGenerator, GravityToPointForceGenerator, LinearForceGenerator, Targets,
 };
+use crate::geometry::{Capsule, Segment};
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rot, Vector2};
 use crate::world::{WorldDef, MAX_FORCE_GENERATORS};
@@ -181,11 +182,26 @@ impl<'b> Layout<'b> {
 
     pub(super) fn props(&self, i: u32) -> Result<Props, Error> {
         let mut c = self.record::<PROPS_RECORD>(self.props_at, i);
-        let shape = match c.u8()? {
-            0 => Shape::Circle { radius: c.scalar()? },
-            1 => Shape::Polygon(c.handle()?),
+        let kind = c.u8()?;
+        // The 24-byte shape field: what each kind does not use must be zero.
+        let (shape, used) = match kind {
+            0 => (Shape::Circle { radius: c.scalar()? }, 8),
+            1 => (Shape::Polygon(c.handle()?), 8),
+            2 => {
+                let h = c.vector()?;
+                (Shape::Capsule(Capsule { center1: -h, center2: h, radius: c.scalar()? }), 24)
+            }
+            3 => {
+                let h = c.vector()?;
+                (Shape::Segment(Segment { point1: -h, point2: h }), 16)
+            }
             _ => return Err(invalid("unknown shape")),
         };
+        for _ in used / 8..3 {
+            if c.u64()? != 0 {
+                return Err(invalid("shape padding not zero"));
+            }
+        }
         let kind = c.u8()?;
         if kind & (BULLET | SENSOR) == BULLET | SENSOR {
             return Err(invalid("a sensor marked bullet"));

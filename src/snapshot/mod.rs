@@ -83,8 +83,9 @@ use hash::{Hash64, PartsHasher};
 
 /// Snapshot format version written by this build (2: length in the header,
 /// XXH64 checksum trailer; 3: the body options and filter in the properties
-/// record).
-pub const VERSION: u32 = 3;
+/// record; 4: capsule and segment shapes, a
+/// 24-byte shape field, and each polygon path's rounding in the paths checksum).
+pub const VERSION: u32 = 4;
 const MAGIC: &[u8; 4] = b"ARPS";
 /// Bytes of the framing that opens a snapshot: `ARPS`, the version (u32) and the
 /// snapshot's total length in bytes (u64), trailer included.
@@ -98,16 +99,16 @@ pub const BODY_RECORD: usize = 64;
 ///
 /// | offset | bytes | field |
 /// |---|---|---|
-/// | 0 | 1 | shape kind (0 circle, 1 polygon) |
-/// | 1 | 8 | circle radius, or the path handle (index u32, generation u32) |
-/// | 9 | 1 | body type and flags (see below) |
-/// | 10 | 8 × 4 | mass, inertia, friction, restitution |
-/// | 42 | 4 + 4 | collision groups, collision level |
-/// | 50 | 8 | user data |
-/// | 58 | 8 × 3 | linear damping, angular damping, gravity scale |
-/// | 82 | 8 + 8 | filter category bits, mask bits |
-/// | 98 | 4 | filter group index (i32) |
-pub const PROPS_RECORD: usize = 102;
+/// | 0 | 1 | shape kind (0 circle, 1 polygon, 2 capsule, 3 segment) |
+/// | 1 | 24 | the shape, zero-padded: circle radius; path handle (index u32, generation u32); capsule's second centre (x, y) and radius (the first centre is the second negated); segment's second end (x, y) (the first is its negation) |
+/// | 25 | 1 | body type and flags (see below) |
+/// | 26 | 8 × 4 | mass, inertia, friction, restitution |
+/// | 58 | 4 + 4 | collision groups, collision level |
+/// | 66 | 8 | user data |
+/// | 74 | 8 × 3 | linear damping, angular damping, gravity scale |
+/// | 98 | 8 + 8 | filter category bits, mask bits |
+/// | 114 | 4 | filter group index (i32) |
+pub const PROPS_RECORD: usize = 118;
 /// Bytes of one arbiter record.
 pub const ARBITER_RECORD: usize = 58;
 /// Bytes of one joint record.

@@ -16,6 +16,7 @@ use crate::error::Error;
 use crate::force::{Generator, Targets};
 use crate::geometry::circle::MAX_CIRCLE_RADIUS;
 use crate::geometry::mass::{MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};
+use crate::geometry::{Capsule, Segment};
 use crate::limits::{check_damping, check_friction, check_gravity_scale, check_restitution};
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::world::{World, MAX_COORDINATE};
@@ -61,6 +62,16 @@ fn check_props(w: &World<'_>, p: &Props) -> Result<(), Error> {
         Shape::Polygon(h) => {
             if w.paths.get(h).is_none() {
                 return Err(invalid("a body's polygon path is not in this world"));
+            }
+        }
+        Shape::Capsule(c) => {
+            if Capsule::new(c.center1(), c.center2(), c.radius()).is_err() {
+                return Err(invalid("capsule out of range"));
+            }
+        }
+        Shape::Segment(sg) => {
+            if Segment::new(sg.point1(), sg.point2()).is_err() {
+                return Err(invalid("segment out of range"));
             }
         }
     }

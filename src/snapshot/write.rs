@@ -320,15 +320,31 @@ pub(super) fn write_def(s: &mut impl Sink, d: &WorldDef) {
 
 #[inline]
 fn write_props(s: &mut impl Sink, p: &Props) {
+    // The shape field is 24 bytes, zero-padded.
     match p.shape {
         Shape::Circle { radius } => {
             s.u8(0);
             s.scalar(radius);
+            s.u64(0);
+            s.u64(0);
         }
         Shape::Polygon(h) => {
             s.u8(1);
             s.u32(h.index());
             s.u32(h.generation());
+            s.u64(0);
+            s.u64(0);
+        }
+        Shape::Capsule(c) => {
+            // Stored centred: the first centre is the second negated.
+            s.u8(2);
+            s.vector(c.center2());
+            s.scalar(c.radius());
+        }
+        Shape::Segment(sg) => {
+            s.u8(3);
+            s.vector(sg.point2());
+            s.u64(0);
         }
     }
     let fixed = if p.fixed_rotation { FIXED_ROTATION } else { 0 };
@@ -502,4 +518,5 @@ fn write_path(s: &mut impl Sink, p: &PolygonPath) {
     s.scalar(p.unit_inertia);
     s.vector(p.centroid);
     s.scalar(p.radius);
+    s.scalar(p.rounding);
 }

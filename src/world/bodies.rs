@@ -7,12 +7,12 @@ use crate::body::{
 use crate::collision;
 use crate::error::Error;
 use crate::geometry::circle::{circle_area, circle_unit_inertia};
-use crate::geometry::{MassData, PolygonPath};
+use crate::geometry::{Capsule, MassData, PolygonPath, Segment};
 use crate::limits::{
     check_damping, check_friction, check_gravity_scale, check_restitution, MAX_BODY_RADIUS, MAX_TIME_STEP,
     MIN_TIME_STEP,
 };
-use crate::math::scalar::{Scalar, ZERO};
+use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rect, Rot, Vector2};
 
 use super::World;
@@ -65,15 +65,15 @@ impl World<'_> {
     }
 
     fn build_body(&self, def: &BodyDef) -> Result<Body, Error> {
-        let (area, unit_inertia, radius) = self.shape_geometry(def.shape)?;
+        let (shape, offset) = centred(def.shape);
+        let (area, unit_inertia, radius) = self.shape_geometry(shape)?;
         let mut body_type = def.body_type;
         let mass = match (body_type, def.mass) {
             (BodyType::Dynamic, MassSpec::Mass(m)) if m == ZERO => {
                 body_type = BodyType::Static;
                 MassData::STATIC
             }
-            (BodyType::Dynamic, MassSpec::Mass(m)) => MassData::from_mass(m, area, unit_inertia)?,
-            (BodyType::Dynamic, MassSpec::Density(d)) => MassData::from_density(d, area, unit_inertia)?,
+            (BodyType::Dynamic, spec) => dynamic_mass(shape, spec, area, unit_inertia)?,
             _ => MassData::STATIC,
         };
         check_friction(def.friction)?;
@@ -85,7 +85,10 @@ impl World<'_> {
             return Err(Error::InvalidOperation { what: "a sensor cannot be a bullet" });
         }
         let rotation = normalized_rotation(def.rotation)?;
-        if !self.def.bounds.contains(def.position) {
+        // A capsule or segment given off its centroid: the body goes to the
+        // centroid, so the shape stays where the definition puts it.
+        let position = def.position + rotation.rotate(offset);
+        if !self.def.bounds.contains(def.position) || !self.def.bounds.contains(position) {
             return Err(Error::OutsideBounds);
         }
         let moving = body_type != BodyType::Static;
@@ -101,11 +104,11 @@ impl World<'_> {
             return Err(Error::OutOfRange { what: "angular velocity" });
         }
         let mut body = Body {
-            position: def.position,
+            position,
             rotation,
             linear_velocity: v,
             angular_velocity: w,
-            shape: def.shape,
+            shape,
             body_type,
             mass,
             friction: def.friction,
@@ -146,6 +149,18 @@ impl World<'_> {
                     return Err(Error::OutOfRange { what: "polygon size" });
                 }
                 Ok((p.area(), p.unit_inertia(), p.radius()))
+            }
+            Shape::Capsule(c) => {
+                // Re-validated: a definition's capsule may have been built
+                // with other ends than these re-centred ones.
+                let c = Capsule::new(c.center1(), c.center2(), c.radius())?;
+                Ok((c.area()?, c.unit_inertia()?, c.bounding_radius()))
+            }
+            Shape::Segment(s) => {
+                let s = Segment::new(s.point1(), s.point2())?;
+                // No area: a dynamic segment takes its mass outright (see
+                // `dynamic_mass`), its inertia that of a thin rod.
+                Ok((scalar::ONE, s.rod_unit_inertia(), s.bounding_radius()))
             }
         }
     }
@@ -314,10 +329,7 @@ impl World<'_> {
     pub fn set_dynamic(&mut self, h: BodyHandle, mass: MassSpec) -> Result<(), Error> {
         let shape = self.bodies.get(h).ok_or(Error::StaleHandle)?.shape;
         let (area, unit_inertia, _) = self.shape_geometry(shape)?;
-        let mass = match mass {
-            MassSpec::Mass(m) => MassData::from_mass(m, area, unit_inertia)?,
-            MassSpec::Density(d) => MassData::from_density(d, area, unit_inertia)?,
-        };
+        let mass = dynamic_mass(shape, mass, area, unit_inertia)?;
         let b = self.bodies.get_mut(h).ok_or(Error::StaleHandle)?;
         b.body_type = BodyType::Dynamic;
         b.mass = mass;
@@ -545,5 +557,46 @@ mod tests {
         assert_eq!((b.index(), b.generation()), (2, 1));
         assert_eq!(w.body(keep).map(|b| b.position().x), Ok(Scalar::from(20)));
         assert!(w.body(last).is_err() && w.body(first).is_err());
+    }
+}
+
+/// The mass data of a dynamic body of `shape` (its `area` and `unit_inertia`
+/// from [`World::shape_geometry`]). A segment has no area: it takes a mass
+/// outright, as a thin rod (its "area" is 1 and its unit inertia L²/12 per kg).
+fn dynamic_mass(shape: Shape, spec: MassSpec, area: Scalar, unit_inertia: Scalar) -> Result<MassData, Error> {
+    match (shape, spec) {
+        (Shape::Segment(_), MassSpec::Density(_)) => {
+            Err(Error::InvalidOperation { what: "a segment has no area: give a dynamic segment a mass" })
+        }
+        (_, MassSpec::Mass(m)) => MassData::from_mass(m, area, unit_inertia),
+        (_, MassSpec::Density(d)) => MassData::from_density(d, area, unit_inertia),
+    }
+}
+
+/// `shape` placed about its centroid, and the centroid's offset (body-local)
+/// from where the shape was given. Circles and polygons are always about
+/// their centroid; a capsule's centres and a segment's ends are made exactly
+/// symmetric (`end1 = −end2`), the first end moving by at most 2^-32 m when
+/// their sum is odd in the last bit.
+pub(crate) fn centred(shape: Shape) -> (Shape, Vector2) {
+    // ⌊(a + b) / 2⌋ on the raw bits, without overflow.
+    let mid = |a: Scalar, b: Scalar| {
+        let sum = i128::from(a.to_bits()) + i128::from(b.to_bits());
+        Scalar::from_bits(i64::try_from(sum >> 1).unwrap_or(0))
+    };
+    let halves = |p: Vector2, q: Vector2| {
+        let m = Vector2::new(mid(p.x, q.x), mid(p.y, q.y));
+        (q - m, m)
+    };
+    match shape {
+        Shape::Capsule(c) => {
+            let (h, m) = halves(c.center1(), c.center2());
+            (Shape::Capsule(Capsule { center1: -h, center2: h, radius: c.radius() }), m)
+        }
+        Shape::Segment(s) => {
+            let (h, m) = halves(s.point1(), s.point2());
+            (Shape::Segment(Segment { point1: -h, point2: h }), m)
+        }
+        other => (other, Vector2::ZERO),
     }
 }

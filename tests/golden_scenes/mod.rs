@@ -14,9 +14,9 @@
 //! so a golden hash cannot silently stop covering the feature it was written for.
 
 use arphysics::{
-    Arbiter, BodyDef, BodyHandle, CallbackContext, Error, FnHandler, GravityForceGenerator,
+    Arbiter, BodyDef, BodyHandle, CallbackContext, Capsule, Error, FnHandler, GravityForceGenerator,
     GravityToPointForceGenerator, Joint, JointDef, JointHandle, JointKind, LinearForceGenerator, MaxTorque,
-    Motor, PathHandle, PolygonPath, Rect, Scalar, StepReport, Targets, Vector2, World, WorldBuffers,
+    Motor, PathHandle, PolygonPath, Rect, Scalar, Segment, StepReport, Targets, Vector2, World, WorldBuffers,
     WorldDef,
 };
 
@@ -29,6 +29,8 @@ pub const GOLDEN_PYRAMID: u64 = 0x6384_e614_1b7e_63a5;
 pub const GOLDEN_MIXED: u64 = 0x80bf_350e_1c8d_41f2;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_LONG: u64 = 0x3b4d_0f4a_b57a_f9bc;
+/// See [`GOLDEN_CORE_SCENE`].
+pub const GOLDEN_SHAPES: u64 = 0;
 
 /// Steps of the core scene.
 pub const CORE_STEPS: u32 = 600;
@@ -46,6 +48,8 @@ pub const PYRAMID_STEPS: u32 = 300;
 pub const MIXED_STEPS: u32 = 600;
 /// Steps of the long-running scene.
 pub const LONG_STEPS: u32 = 2_000;
+/// Steps of the every-shape scene: 6 s.
+pub const SHAPES_STEPS: u32 = 360;
 
 /// A scene's result.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -204,6 +208,64 @@ pub fn pyramid() -> Result<Outcome, SceneError> {
     let p = w.body(top)?.position();
     check(p.x.abs() < q(1, 100), "pyramid top box stays centred")?;
     check(top_y0 - p.y < q(1, 10) && top_y0 - p.y >= Scalar::ZERO, "pyramid stands (top sag under 0.1 m)")?;
+    Ok(out)
+}
+
+// ---- every shape kind -----------------------------------------------------------
+
+/// Every shape kind on every pair that can touch: a valley of static segments
+/// (a floor and two 1-in-2 slopes) and a rounded static ledge; dropped on it,
+/// capsules (lying, upright and of zero length), rounded and sharp boxes, a
+/// rounded triangle, circles, and a dynamic segment (a thin rod, which meets
+/// everything but the ground segments). Gravity (0, −10), 360 steps.
+pub fn shapes() -> Result<Outcome, SceneError> {
+    let mut buffers = WorldBuffers::<32, 128, 1>::new();
+    let bounds = Rect::from_corners(v(-30, -10), v(30, 40));
+    let mut w = World::new(WorldDef::with_bounds(bounds), buffers.storage())?;
+    let floor = Segment::new(v(-8, 0), v(8, 0))?;
+    w.add_body(BodyDef::segment(floor))?;
+    for side in [-1, 1] {
+        let slope = Segment::new(v(8 * side, 0), v(16 * side, 4))?;
+        w.add_body(BodyDef::segment(slope))?;
+    }
+    let ledge = w.add_path(PolygonPath::rounded_rectangle(q(4, 1), q(1, 1), q(1, 5))?)?;
+    w.add_body(BodyDef::polygon(ledge).position(v(12, 9)).static_body().angle(q(-1, 5)))?;
+    let rounded = w.add_path(PolygonPath::rounded_rectangle(q(1, 1), q(3, 4), q(1, 10))?)?;
+    let square = w.add_path(PolygonPath::rectangle(q(1, 1), q(1, 1))?)?;
+    let triangle = w.add_path(PolygonPath::rounded(&[v(-1, 0), v(1, 0), v(0, 1)], q(1, 20))?)?;
+    let lying = Capsule::new(vq(-1, 0, 2), vq(1, 0, 2), q(1, 4))?;
+    let upright = Capsule::new(v(0, 0), vq(0, 3, 2), q(3, 10))?;
+    let round = Capsule::new(v(0, 0), v(0, 0), q(2, 5))?;
+    let rod = Segment::new(v(-1, 0), v(1, 0))?;
+    let mut capsules = [BodyHandle::from_parts(0, 0); 6];
+    for i in 0..18 {
+        let at = Vector2::new(q(-12 + (i % 6) * 4, 1) + q(i, 7), q(3 + (i / 6) * 3, 1));
+        let def = match i % 6 {
+            0 => BodyDef::capsule(lying),
+            1 => BodyDef::capsule(upright).angle(q(1, 3)),
+            2 => BodyDef::polygon(rounded).angle(q(i, 5)),
+            3 => BodyDef::polygon(triangle),
+            4 => BodyDef::capsule(round).restitution(q(1, 2)),
+            _ => match i {
+                5 => BodyDef::segment(rod).body_type(arphysics::BodyType::Dynamic).mass(q(1, 1)),
+                11 => BodyDef::circle(q(1, 2)),
+                _ => BodyDef::polygon(square),
+            },
+        };
+        let h = w.add_body(def.position(at).angular_velocity(q(i - 9, 4)))?;
+        if i % 6 <= 1 {
+            if let Some(slot) = capsules.get_mut((i / 6 * 2 + i % 6) as usize) {
+                *slot = h;
+            }
+        }
+    }
+    w.add_force_generator(GravityForceGenerator::new(v(0, -10)))?;
+    let out = run(&mut w, SHAPES_STEPS)?;
+    check(out.left_bounds == 0, "nothing leaves the valley")?;
+    for h in capsules {
+        let p = w.body(h)?.position();
+        check(p.y > Scalar::ZERO && p.y < q(8, 1), "the capsules come to rest in the valley")?;
+    }
     Ok(out)
 }
 

@@ -26,11 +26,12 @@ use golden_scenes::{Outcome, SceneError};
 
 type Scene = (&'static str, fn() -> Result<Outcome, SceneError>, u64);
 
-const SCENES: [Scene; 4] = [
+const SCENES: [Scene; 5] = [
     ("core scene", golden_scenes::core_scene, golden_scenes::GOLDEN_CORE_SCENE),
     ("pyramid", golden_scenes::pyramid, golden_scenes::GOLDEN_PYRAMID),
     ("mixed scene", golden_scenes::mixed, golden_scenes::GOLDEN_MIXED),
     ("long-running scene", golden_scenes::long_running, golden_scenes::GOLDEN_LONG),
+    ("every-shape scene", golden_scenes::shapes, golden_scenes::GOLDEN_SHAPES),
 ];
 
 #[entry]
