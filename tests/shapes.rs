@@ -332,3 +332,57 @@ fn bad_shapes_are_clear_errors() {
     assert!(Segment::new(v(0.0, 0.0), v(300.0, 0.0)).is_err());
     assert!(Capsule::new(v(0.0, 0.0), v(100.0, 0.0), s(40.0)).is_err());
 }
+
+// ---- shape casts ----------------------------------------------------------------------
+
+/// A circle, a capsule and a box cast down onto the ground segment stop at
+/// their half heights above it: fraction (5 − h) / 10, normal up.
+#[test]
+fn shapes_cast_onto_a_segment_stop_where_they_touch() {
+    let mut w = world();
+    let g = ground(&mut w);
+    let square = PolygonPath::rectangle(s(1.0), s(1.0)).expect("box");
+    let cases = [
+        (QueryShape::Circle(s(0.5)), 0.5),
+        (QueryShape::Capsule(capsule(-0.6, 0.0, 0.6, 0.0, 0.3)), 0.3),
+        (QueryShape::Capsule(capsule(0.0, -0.6, 0.0, 0.6, 0.3)), 0.9),
+        (QueryShape::Polygon(&square), 0.5),
+    ];
+    for (shape, h) in cases {
+        let xf = Transform::new(v(2.0, 5.0), Rot::IDENTITY);
+        let hit = w.shape_cast(shape, xf, v(0.0, -10.0), QueryFilter::default()).expect("cast").expect("a hit");
+        let expected = (5.0 - h) / 10.0;
+        assert_eq!(hit.body, g);
+        assert!((f(hit.fraction) - expected).abs() < 1e-4, "{shape:?}: fraction {} vs {expected}", f(hit.fraction));
+        assert!(f(hit.normal.y) > 0.999, "{shape:?}: normal {:?}", hit.normal);
+        assert!(f(hit.point.y).abs() < 0.011, "{shape:?}: point {:?}", hit.point);
+    }
+    // Cast sideways, parallel to the ground: no hit.
+    let xf = Transform::new(v(2.0, 5.0), Rot::IDENTITY);
+    let miss = w.shape_cast(QueryShape::Circle(s(0.5)), xf, v(10.0, 0.0), QueryFilter::default());
+    assert_eq!(miss, Ok(None));
+    // Starting in contact: fraction 0.
+    let xf = Transform::new(v(2.0, 0.2), Rot::IDENTITY);
+    let hit = w.shape_cast(QueryShape::Circle(s(0.5)), xf, v(0.0, -1.0), QueryFilter::default());
+    assert_eq!(hit.expect("cast").map(|h| h.fraction), Some(Scalar::ZERO));
+}
+
+/// A capsule cast sideways into a wall of boxes stops at the nearest one.
+#[test]
+fn a_capsule_cast_stops_at_the_nearest_wall() {
+    let mut w = world();
+    let path = w.add_path(PolygonPath::rectangle(s(1.0), s(4.0)).expect("wall")).expect("path");
+    let near = w.add_body(BodyDef::polygon(path).static_body().position(v(6.0, 2.0))).expect("near");
+    w.add_body(BodyDef::polygon(path).static_body().position(v(9.0, 2.0))).expect("far");
+    let c = capsule(0.0, -0.5, 0.0, 0.5, 0.4);
+    let xf = Transform::new(v(0.0, 2.0), Rot::IDENTITY);
+    let hit = w.shape_cast(QueryShape::Capsule(c), xf, v(20.0, 0.0), QueryFilter::default()).expect("cast");
+    let hit = hit.expect("a hit");
+    // Touches when its right side (x + 0.4) reaches the wall's face at 5.5.
+    assert_eq!(hit.body, near);
+    assert!((f(hit.fraction) - 5.1 / 20.0).abs() < 1e-4, "fraction {}", f(hit.fraction));
+    assert!(f(hit.normal.x) < -0.999, "normal {:?}", hit.normal);
+    // Excluding it, the far wall.
+    let hit = w.shape_cast(QueryShape::Capsule(c), xf, v(20.0, 0.0), QueryFilter::default().exclude(near));
+    assert!((f(hit.expect("cast").expect("hit").fraction) - 8.1 / 20.0).abs() < 1e-4);
+}
