@@ -76,14 +76,16 @@ fn large_pyramid() -> Result<World<'static>, arphysics::Error> {
 fn many_pyramids() -> Result<World<'static>, arphysics::Error> {
     let mut w = world(20 * 20 * 55 + 128, 0)?;
     ground(&mut w, 250.0)?;
-    // 20 × 20 pyramids of 10 rows: 20 side by side on each of 20 shelves.
-    let shelf = w.add_path(PolygonPath::rectangle(s(100.0), s(1.0))?)?;
+    // 20 × 20 pyramids of 10 rows: 20 side by side on each of 20 shelves,
+    // the shelves segments as in Box2D (two 250 m ones each: a body is at most
+    // 256 m across).
     let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0))?)?;
     for k in 0..20 {
         let y0 = f64::from(k) * 14.0;
         if k > 0 {
-            for x in [-200.0, -100.0, 0.0, 100.0, 200.0] {
-                w.add_body(BodyDef::polygon(shelf).position(v(x, y0 - 0.5)).static_body())?;
+            for x in [-125.0, 125.0] {
+                let shelf = arphysics::Segment::new(v(-125.0, 0.0), v(125.0, 0.0))?;
+                w.add_body(BodyDef::segment(shelf).position(v(x, y0)))?;
             }
         }
         for i in 0..20 {

@@ -350,10 +350,15 @@ fn shapes_cast_onto_a_segment_stop_where_they_touch() {
     ];
     for (shape, h) in cases {
         let xf = Transform::new(v(2.0, 5.0), Rot::IDENTITY);
-        let hit = w.shape_cast(shape, xf, v(0.0, -10.0), QueryFilter::default()).expect("cast").expect("a hit");
+        let hit =
+            w.shape_cast(shape, xf, v(0.0, -10.0), QueryFilter::default()).expect("cast").expect("a hit");
         let expected = (5.0 - h) / 10.0;
         assert_eq!(hit.body, g);
-        assert!((f(hit.fraction) - expected).abs() < 1e-4, "{shape:?}: fraction {} vs {expected}", f(hit.fraction));
+        assert!(
+            (f(hit.fraction) - expected).abs() < 1e-4,
+            "{shape:?}: fraction {} vs {expected}",
+            f(hit.fraction)
+        );
         assert!(f(hit.normal.y) > 0.999, "{shape:?}: normal {:?}", hit.normal);
         assert!(f(hit.point.y).abs() < 0.011, "{shape:?}: point {:?}", hit.point);
     }

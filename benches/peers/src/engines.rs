@@ -63,7 +63,7 @@ pub mod ar {
     use super::{BodyDesc, BodyState, Engine, Scene, ShapeDesc, GRAVITY, SUBSTEPS, TIME_STEP};
     use arphysics::{
         BodyDef, BodyHandle, Capacities, GravityForceGenerator, Index, JointDef, JointKind, PathHandle,
-        PolygonPath, Rect, Scalar, Vector2, World, WorldDef,
+        PolygonPath, Rect, Scalar, Segment, Vector2, World, WorldDef,
     };
 
     /// The arphysics side: a world on heap storage sized from the scene.
@@ -89,7 +89,8 @@ pub mod ar {
     fn unique_polygons(scene: &Scene) -> Vec<ShapeDesc> {
         let mut out: Vec<ShapeDesc> = Vec::new();
         for b in &scene.bodies {
-            if !matches!(b.shape, ShapeDesc::Circle { .. }) && !out.contains(&b.shape) {
+            let polygon = matches!(b.shape, ShapeDesc::Box { .. } | ShapeDesc::Polygon(_));
+            if polygon && !out.contains(&b.shape) {
                 out.push(b.shape.clone());
             }
         }
@@ -113,6 +114,9 @@ pub mod ar {
     fn body_def(b: &BodyDesc, paths: &[(ShapeDesc, PathHandle)]) -> Result<BodyDef, String> {
         let def = match &b.shape {
             ShapeDesc::Circle { r } => BodyDef::circle(s(*r)?),
+            ShapeDesc::Segment(a, b) => {
+                BodyDef::segment(Segment::new(v(a.0, a.1)?, v(b.0, b.1)?).map_err(err)?)
+            }
             shape => {
                 let path = paths
                     .iter()
@@ -154,7 +158,7 @@ pub mod ar {
                             points.iter().map(|&(x, y)| v(x, y)).collect();
                         PolygonPath::new(&pts?)
                     }
-                    ShapeDesc::Circle { .. } => continue,
+                    ShapeDesc::Circle { .. } | ShapeDesc::Segment(..) => continue,
                 }
                 .map_err(err)?;
                 paths.push((shape, world.add_path(path).map_err(err)?));
@@ -261,6 +265,10 @@ pub mod b2 {
                         let p = shapes::polygon_from_points(pts, 0.0).map_err(err)?;
                         body.create_polygon(&shape_def, &p).map_err(err)?;
                     }
+                    ShapeDesc::Segment(a, c) => {
+                        let (p, q) = (Vec2::new(a.0 as f32, a.1 as f32), Vec2::new(c.0 as f32, c.1 as f32));
+                        body.create_segment_between(&shape_def, p, q).map_err(err)?;
+                    }
                 }
                 bodies.push(id);
             }
@@ -332,6 +340,10 @@ pub mod rp {
                         ColliderBuilder::convex_polyline(pts)
                             .ok_or_else(|| "rapier: bad polygon".to_owned())?
                     }
+                    ShapeDesc::Segment(a, c) => ColliderBuilder::segment(
+                        Vector::new(a.0 as f32, a.1 as f32),
+                        Vector::new(c.0 as f32, c.1 as f32),
+                    ),
                 };
                 let mut collider =
                     collider.density(b.density as f32).friction(b.friction as f32).restitution(0.0);

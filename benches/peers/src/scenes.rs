@@ -2,11 +2,12 @@
 //! so that every engine builds exactly the same bodies, shapes and joints.
 //!
 //! Differences from Box2D's own definitions, forced by what all three engines share:
-//! * Ground is made of static boxes (one body per box) instead of one static body
-//!   with several shapes or segments: arphysics has one shape per body, no segments,
-//!   and bodies of at most 128 m radius.
-//! * `many_pyramids`: each floor is two 110 m × 0.5 m boxes (top surface where Box2D
-//!   puts its segment) instead of one 220 m segment.
+//! * Ground is made of static bodies of one shape each instead of one static body
+//!   with several shapes: arphysics has one shape per body, and bodies of at most
+//!   128 m radius.
+//! * `many_pyramids`: each floor is two 220 m segments (one body each) where Box2D
+//!   puts one 440 m segment; the pyramids stand on the same line. (Before arphysics
+//!   had segments, the floors were boxes.)
 //! * `rain`: Box2D's rain drops 5-body ragdolls ("humans") in groups and recycles
 //!   them; ragdolls need capsules and joint limits, so this rain drops 1,000 circles,
 //!   boxes and hexagons, all at once from a grid, into a U-shaped container.
@@ -23,6 +24,8 @@ pub enum ShapeDesc {
     Circle { r: f64 },
     /// A convex polygon, counter-clockwise, centroid at the origin.
     Polygon(Vec<(f64, f64)>),
+    /// A segment between two points, relative to the body's origin (static bodies).
+    Segment((f64, f64), (f64, f64)),
 }
 
 /// One body.
@@ -137,15 +140,17 @@ fn many_pyramids() -> Scene {
     let ground_dy = 2.0 * extent * (base_count as f64 + 1.0); // 11 m
     let ground_width = 2.0 * extent * columns as f64 * (base_count as f64 + 1.0); // 220 m
     let base_width = 2.0 * extent * base_count as f64;
-    let thickness = 0.25; // half-height of the floor boxes
-
     let mut bodies = Vec::new();
     let mut ground_y = 0.0;
     for _ in 0..rows {
-        // Two boxes per floor (arphysics bodies are ≤ 128 m in radius), top at ground_y.
-        let half = 0.25 * ground_width;
-        bodies.push(ground_box(half, thickness, -half, ground_y - thickness));
-        bodies.push(ground_box(half, thickness, half, ground_y - thickness));
+        // Box2D's floor is one segment from −groundWidth to groundWidth; here two
+        // (an arphysics body is at most 128 m in radius), on the same line.
+        for x in [-0.5 * ground_width, 0.5 * ground_width] {
+            let half = 0.5 * ground_width;
+            let mut floor = ground_box(half, 0.0, x, ground_y);
+            floor.shape = ShapeDesc::Segment((-half, 0.0), (half, 0.0));
+            bodies.push(floor);
+        }
         ground_y += ground_dy;
     }
     let mut base_y = 0.0;
