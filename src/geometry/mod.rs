@@ -1,6 +1,7 @@
-//! Shapes and their mass properties: [`PolygonPath`] (convex hull, area, centroid,
-//! moment of inertia), circles ([`circle_area`], [`circle_unit_inertia`]), and
-//! [`MassData`].
+//! Shapes and their mass properties: [`PolygonPath`] (convex hull, optionally
+//! with rounded corners; area, centroid, moment of inertia), circles
+//! ([`circle_area`], [`circle_unit_inertia`]), [`Capsule`]s and [`Segment`]s,
+//! ray casts against each ([`ray`]), and [`MassData`].
 //!
 //! Every quantity here is computed from the raw Q32.32 bits with exact integer
 //! arithmetic and rounded once, to nearest, at the end. The results are therefore

@@ -21,6 +21,11 @@
 //! The hull starts at its lowest vertex (the leftmost of the lowest if there are
 //! several) and is a function of the *set* of input points: neither their order nor
 //! repetitions change a single bit of the result.
+//!
+//! A rounded polygon ([`PolygonPath::rounded`]) stores its *core*, the hull inset
+//! by the rounding radius, under the same layout contract; the shape is every
+//! point within [`rounding`](PolygonPath::rounding) of the core, and its mass
+//! properties, bounding radius and core extent are the rounded shape's.
 
 use super::circle::PI_Q64;
 use super::wide::U256;
@@ -314,9 +319,11 @@ impl PolygonPath {
     /// (parallel-axis theorem) in 64-fraction-bit integers and are rounded once.
     /// The core's own terms, the rectangles and `π r²`, `π r⁴ / 2` are exact but
     /// for 2^-64 roundings of each product; the sectors' angles come from the
-    /// crate's [`atan2`](crate::math::trig::atan2) (within 1.2e-10 rad), so the
-    /// centroid and inertia can be a few steps of 2^-32 from the exact values
-    /// (symmetric shapes such as [`rounded_rectangle`](Self::rounded_rectangle)
+    /// crate's [`atan2`] (within 1.2e-10 rad, then shifted equally so they sum to
+    /// 2π), so a large shape's centroid and inertia can be a few steps of 2^-32
+    /// from the exact values (a 4 m triangle rounded by 0.3 m: both within one
+    /// step of its outline's; symmetric shapes such as
+    /// [`rounded_rectangle`](Self::rounded_rectangle)
     /// keep their centroid exactly at their centre). The stored vertices are
     /// relative to the rounded shape's centroid, which
     /// [`centroid`](Self::centroid) reports in the input coordinates;
@@ -452,15 +459,17 @@ impl PolygonPath {
         self.centroid
     }
 
-    /// Bounding radius: the largest distance from the centroid to a vertex (m).
+    /// Bounding radius: the largest distance from the centroid to a vertex, plus
+    /// the [`rounding`](Self::rounding) radius (m), rounded up.
     #[inline]
     #[must_use]
     pub fn radius(&self) -> Scalar {
         self.radius
     }
 
-    /// Core extent: the least distance from the centroid to a face's line (m),
-    /// the radius of the largest circle about the centroid inside the polygon.
+    /// Core extent: the least distance from the centroid to a face's line, plus
+    /// the [`rounding`](Self::rounding) radius (m): the radius of the largest
+    /// circle about the centroid inside the shape.
     /// Continuous collision measures what counts as fast against it.
     #[inline]
     #[must_use]
