@@ -19,7 +19,7 @@ use crate::math::scalar::{Scalar, ZERO};
 pub const MAX_CIRCLE_RADIUS: Scalar = Scalar::from_int(128);
 
 /// π · 2^64, rounded to nearest (π = 3.243F6A8885A308D3|13… in hexadecimal).
-const PI_Q64: u128 = 0x3_243F_6A88_85A3_08D3;
+pub(super) const PI_Q64: u128 = 0x3_243F_6A88_85A3_08D3;
 
 /// The radius as raw bits (units of 2^-32 m), once checked.
 fn radius_bits(radius: Scalar) -> Result<u128, Error> {

@@ -1,6 +1,7 @@
-//! Shapes and their mass properties: [`PolygonPath`] (convex hull, area, centroid,
-//! moment of inertia), circles ([`circle_area`], [`circle_unit_inertia`]), and
-//! [`MassData`].
+//! Shapes and their mass properties: [`PolygonPath`] (convex hull, optionally
+//! with rounded corners; area, centroid, moment of inertia), circles
+//! ([`circle_area`], [`circle_unit_inertia`]), [`Capsule`]s and [`Segment`]s,
+//! ray casts against each ([`ray`]), and [`MassData`].
 //!
 //! Every quantity here is computed from the raw Q32.32 bits with exact integer
 //! arithmetic and rounded once, to nearest, at the end. The results are therefore
@@ -14,7 +15,7 @@ pub mod mass;
 pub mod polygon_path;
 pub mod ray;
 
-pub use capsule::{Capsule, Segment};
+pub use capsule::{Capsule, Segment, MIN_SEGMENT_LENGTH};
 pub use circle::{circle_area, circle_unit_inertia, MAX_CIRCLE_RADIUS};
 pub use mass::{MassData, MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};
 pub use polygon_path::{
@@ -74,6 +75,22 @@ mod wide {
             Self { hi, lo }
         }
 
+        /// `self · 2^k` for `k < 128` (modulo 2^256; callers keep it far below).
+        pub(super) fn shl(self, k: u32) -> Self {
+            if k == 0 || k >= 128 {
+                return if k == 0 { self } else { Self::default() };
+            }
+            Self { hi: (self.hi << k) | (self.lo >> (128 - k)), lo: self.lo << k }
+        }
+
+        /// `⌊self / 2^k⌋` for `k < 128`.
+        pub(super) fn shr(self, k: u32) -> Self {
+            if k == 0 || k >= 128 {
+                return if k == 0 { self } else { Self::default() };
+            }
+            Self { hi: self.hi >> k, lo: (self.lo >> k) | (self.hi << (128 - k)) }
+        }
+
         /// `self / (d · 2^shift)` rounded to nearest (ties up), for `1 ≤ shift ≤ 125`
         /// and `1 ≤ d ≤ 3`. `None` when the arguments are outside those limits or
         /// the quotient does not fit a `u128`.
@@ -94,5 +111,28 @@ mod wide {
             let up = rem >= den.wrapping_sub(rem);
             q.checked_add(u128::from(up))
         }
+    }
+
+    /// `√d · 2^62` for `d < 2^82`, `None` above: the square root with 62 more
+    /// fraction bits than `d`'s unit gives (for raw Q32.32 squares `d` in units of
+    /// 2^-64 m², the length in units of 2^-94 m).
+    ///
+    /// `isqrt(d · 2^44)` gives 22 extra bits (`s ≥ 2^22` for `d ≥ 1`); one Newton
+    /// step from it, `s + (d·2^44 − s²) / (2s)`, adds 40 more. Newton from below
+    /// overshoots by at most `1 / (2s) ≤ 2^-23` of a unit of `s`, so the result is
+    /// within 2^-45 of `d`'s square-root unit above or below the exact value (for a
+    /// length in raw bits, within 2^-77 m).
+    pub(super) fn sqrt_q62(d: u128) -> Option<u128> {
+        if d >= 1 << 82 {
+            return None;
+        }
+        if d == 0 {
+            return Some(0);
+        }
+        let n = d << 44; // < 2^126
+        let s = n.isqrt(); // 2^22 ≤ s < 2^63
+        let rem = n.checked_sub(s.checked_mul(s)?)?; // ≤ 2s < 2^64
+        let frac = (rem << 40).checked_div(s.checked_mul(2)?)?; // < 2^41
+        (s << 40).checked_add(frac)
     }
 }

@@ -21,10 +21,17 @@
 //! The hull starts at its lowest vertex (the leftmost of the lowest if there are
 //! several) and is a function of the *set* of input points: neither their order nor
 //! repetitions change a single bit of the result.
+//!
+//! A rounded polygon ([`PolygonPath::rounded`]) stores its *core*, the hull inset
+//! by the rounding radius, under the same layout contract; the shape is every
+//! point within [`rounding`](PolygonPath::rounding) of the core, and its mass
+//! properties, bounding radius and core extent are the rounded shape's.
 
+use super::circle::PI_Q64;
 use super::wide::U256;
 use crate::error::Error;
 use crate::math::scalar::{Scalar, ZERO};
+use crate::math::trig::atan2;
 use crate::math::Vector2;
 
 /// Most vertices a polygon may have (after the convex hull removed the rest).
@@ -63,6 +70,14 @@ const MAX_BOX_SIDE_BITS: i128 = 1 << 41;
 
 /// The error for a polygon that is too large (or too far spread).
 const TOO_LARGE: Error = Error::OutOfRange { what: "polygon size" };
+
+/// The error for a rounding radius below 0 or too large for the polygon.
+const BAD_ROUNDING: Error = Error::OutOfRange { what: "rounding radius" };
+
+/// Least `1 + n₁·n₂` (in units of 2^-62) of two adjacent faces' unit normals
+/// for which a corner is inset: 2^-38, a turn within 2^-19 rad of a half turn,
+/// where the core vertex would move 2^19.5 times the radius.
+const MIN_CORNER_DEN: i128 = 1 << 24;
 
 /// A point as the raw bits of its coordinates (units of 2^-32 m).
 type Pt = (i64, i64);
@@ -283,6 +298,131 @@ impl PolygonPath {
         Self::new(&[corner(-1, -1)?, corner(1, -1)?, corner(1, 1)?, corner(-1, 1)?])
     }
 
+    /// The convex hull of `points` (m) with its corners rounded by `radius` (m).
+    ///
+    /// The outline keeps the hull's flat faces where they are and replaces each
+    /// corner by a circular arc of `radius`: the shape is every point within
+    /// `radius` of the *core*, the hull inset by `radius` (each face moved inward
+    /// by `radius`). The stored [`vertices`](Self::vertices) are the core's and
+    /// [`rounding`](Self::rounding) is `radius`. `radius = 0` gives exactly
+    /// [`new`](Self::new)`(points)`.
+    ///
+    /// A core vertex is the hull vertex moved inward along the corner's
+    /// bisector by `radius / cos(θ/2)` (θ the turn between the faces' normals),
+    /// computed from 62-fraction-bit unit normals and rounded once to 2^-32 m,
+    /// so the faces stay within about 2^-32 m of the hull's.
+    ///
+    /// Mass properties are those of the rounded shape (core polygon, one
+    /// `length × radius` rectangle on each core edge, one circular sector at each
+    /// core vertex): the area is `A_core + P_core · radius + π radius²`;
+    /// centroid and polar inertia sum the pieces' first and second moments
+    /// (parallel-axis theorem) in 64-fraction-bit integers and are rounded once.
+    /// The core's own terms, the rectangles and `π r²`, `π r⁴ / 2` are exact but
+    /// for 2^-64 roundings of each product; the sectors' angles come from the
+    /// crate's [`atan2`] (within 1.2e-10 rad, then shifted equally so they sum to
+    /// 2π), so a large shape's centroid and inertia can be a few steps of 2^-32
+    /// from the exact values (a 4 m triangle rounded by 0.3 m: both within one
+    /// step of its outline's; symmetric shapes such as
+    /// [`rounded_rectangle`](Self::rounded_rectangle)
+    /// keep their centroid exactly at their centre). The stored vertices are
+    /// relative to the rounded shape's centroid, which
+    /// [`centroid`](Self::centroid) reports in the input coordinates;
+    /// [`radius`](Self::radius) and [`core_extent`](Self::core_extent) include
+    /// the rounding.
+    ///
+    /// # Errors
+    /// Those of [`new`](Self::new) for the hull, and [`Error::OutOfRange`]
+    /// `{ what: "rounding radius" }` when `radius < 0`, or when the inset would
+    /// collapse or reverse an edge, or leave a core below [`MIN_POLYGON_AREA`] or
+    /// thinner than [`MIN_POLYGON_THICKNESS`] (the radius is too large for the
+    /// polygon's inradius: use a capsule or a circle for such shapes).
+    pub fn rounded(points: &[Vector2], radius: Scalar) -> Result<Self, Error> {
+        if radius < ZERO {
+            return Err(BAD_ROUNDING);
+        }
+        let hull = Self::new(points)?;
+        if radius == ZERO {
+            return Ok(hull);
+        }
+        let count = hull.count;
+        let r = i128::from(radius.to_bits());
+        let mut hv = [(0i128, 0i128); MAX_POLYGON_VERTICES];
+        for (slot, v) in hv.iter_mut().zip(hull.vertices()) {
+            *slot = widen(bits(*v));
+        }
+        let hv = hv.get(..count).ok_or(Error::DegeneratePolygon)?;
+        let core_pts = inset(hv, r)?;
+        let core_pts = core_pts.get(..count).ok_or(Error::DegeneratePolygon)?;
+        check_core(hv, core_pts)?;
+
+        // Moments about the hull's centroid (the core's coordinates' origin).
+        let m = rounded_moments(core_pts, r)?;
+        // The rounded shape's centroid, rounded to 2^-32 m: round(S · 2^32 / A).
+        let g = (
+            div_round(m.sx.saturating_mul(1 << 32), m.area),
+            div_round(m.sy.saturating_mul(1 << 32), m.area),
+        );
+        // Second moment about g (exactly the point the vertices are shifted by):
+        // I_g = I_O − 2 g·S + A |g|².
+        let gq = (g.0.saturating_mul(1 << 32), g.1.saturating_mul(1 << 32));
+        let gs = mulq(gq.0, m.sx)?.saturating_add(mulq(gq.1, m.sy)?);
+        let gg = mulq(gq.0, gq.0)?.saturating_add(mulq(gq.1, gq.1)?);
+        let inertia = m.inertia.saturating_sub(gs.saturating_mul(2)).saturating_add(mulq(m.area, gg)?);
+
+        let mut vertices = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+        let mut normals = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+        let mut radius2 = 0i128;
+        for (i, &p) in core_pts.iter().enumerate() {
+            let next = *core_pts.get(i.saturating_add(1)).or(core_pts.first()).unwrap_or(&p);
+            let a = (p.0.saturating_sub(g.0), p.1.saturating_sub(g.1));
+            radius2 = radius2.max(dot(a, a));
+            if let (Some(v), Some(n)) = (vertices.get_mut(i), normals.get_mut(i)) {
+                *v = from_bits(a);
+                *n = outward_normal((next.0.saturating_sub(p.0), next.1.saturating_sub(p.1)));
+            }
+        }
+        let bound = Scalar::from_bits(to_i64(ceil_sqrt(radius2))?) + radius;
+        if bound > MAX_POLYGON_RADIUS {
+            return Err(TOO_LARGE);
+        }
+        let centroid = hull.centroid + from_bits(g);
+        let mut path = Self {
+            vertices,
+            normals,
+            count,
+            area: Scalar::from_bits(to_i64(div_round(m.area, 1 << 32))?),
+            unit_inertia: Scalar::from_bits(to_i64(div_round(inertia, 1 << 32))?),
+            centroid,
+            radius: bound,
+            core: ZERO,
+            rounding: radius,
+        };
+        let core =
+            path.vertices().iter().zip(path.normals()).map(|(v, n)| n.dot(*v)).min().unwrap_or_default();
+        path.core = core.max(ZERO) + radius;
+        Ok(path)
+    }
+
+    /// A `width` × `height` rectangle centred on the origin with its corners
+    /// rounded by `radius` (m): [`rounded`](Self::rounded) on the corners
+    /// [`rectangle`](Self::rectangle) uses. Its area is
+    /// `width · height − (4 − π) radius²`.
+    ///
+    /// # Errors
+    /// Those of [`rectangle`](Self::rectangle) and [`rounded`](Self::rounded)
+    /// (`"rounding radius"` when `2 · radius` reaches the shorter side, or leaves
+    /// a core thinner than the minima).
+    pub fn rounded_rectangle(width: Scalar, height: Scalar, radius: Scalar) -> Result<Self, Error> {
+        if width <= ZERO || height <= ZERO {
+            return Err(Error::OutOfRange { what: "rectangle side" });
+        }
+        let (hx, hy) = (width.to_bits() >> 1, height.to_bits() >> 1);
+        let corner = |sx: i64, sy: i64| {
+            Vector2::new(Scalar::from_bits(sx.saturating_mul(hx)), Scalar::from_bits(sy.saturating_mul(hy)))
+        };
+        Self::rounded(&[corner(-1, -1), corner(1, -1), corner(1, 1), corner(-1, 1)], radius)
+    }
+
     /// The hull's vertices, counter-clockwise, relative to the centroid (m).
     #[inline]
     #[must_use]
@@ -319,15 +459,17 @@ impl PolygonPath {
         self.centroid
     }
 
-    /// Bounding radius: the largest distance from the centroid to a vertex (m).
+    /// Bounding radius: the largest distance from the centroid to a vertex, plus
+    /// the [`rounding`](Self::rounding) radius (m), rounded up.
     #[inline]
     #[must_use]
     pub fn radius(&self) -> Scalar {
         self.radius
     }
 
-    /// Core extent: the least distance from the centroid to a face's line (m),
-    /// the radius of the largest circle about the centroid inside the polygon.
+    /// Core extent: the least distance from the centroid to a face's line, plus
+    /// the [`rounding`](Self::rounding) radius (m): the radius of the largest
+    /// circle about the centroid inside the shape.
     /// Continuous collision measures what counts as fast against it.
     #[inline]
     #[must_use]
@@ -480,4 +622,226 @@ fn outward_normal(d: Diff) -> Vector2 {
     let len = i128::try_from(len2.isqrt()).unwrap_or(i128::MAX);
     let one = 1i128 << 32;
     from_bits((div_round(sx.saturating_mul(one), len), div_round(sy.saturating_mul(one), len)))
+}
+
+/// The hull `hv` (raw bits, counter-clockwise) with every face moved inward by
+/// `r` (raw bits, > 0): each vertex moves by `r · (n₁ + n₂) / (1 + n₁·n₂)`
+/// against the outward unit normals `n₁`, `n₂` of its two faces (the point at
+/// distance `r` inside both face lines), rounded once to 2^-32 m.
+fn inset(hv: &[Diff], r: i128) -> Result<[Diff; MAX_POLYGON_VERTICES], Error> {
+    let count = hv.len();
+    let edge = |i: usize| -> Diff {
+        let a = hv.get(i % count.max(1)).copied().unwrap_or_default();
+        let b = hv.get(i.saturating_add(1) % count.max(1)).copied().unwrap_or_default();
+        (b.0.saturating_sub(a.0), b.1.saturating_sub(a.1))
+    };
+    let mut core = [(0i128, 0i128); MAX_POLYGON_VERTICES];
+    for (i, (slot, v)) in core.iter_mut().zip(hv).enumerate() {
+        let n1 = unit_normal_q62(edge(i.saturating_add(count).saturating_sub(1)));
+        let n2 = unit_normal_q62(edge(i));
+        // 1 + n₁·n₂ in units of 2^-124, then 2^-62 (|nᵢ| ≤ 2^62 + 2).
+        let den = (1i128 << 124).saturating_add(dot(n1, n2)) >> 62;
+        if den < MIN_CORNER_DEN {
+            return Err(BAD_ROUNDING);
+        }
+        // q = (n₁ + n₂) / (1 + n₁·n₂) in units of 2^-62 (|q| < 2^82 by the guard).
+        let q = (
+            div_round(n1.0.saturating_add(n2.0).saturating_mul(1 << 62), den),
+            div_round(n1.1.saturating_add(n2.1).saturating_mul(1 << 62), den),
+        );
+        let off = (div_round(r.saturating_mul(q.0), 1 << 62), div_round(r.saturating_mul(q.1), 1 << 62));
+        *slot = (v.0.saturating_sub(off.0), v.1.saturating_sub(off.1));
+    }
+    Ok(core)
+}
+
+/// The core of a rounded polygon must keep every edge (same direction as the
+/// hull's), stay strictly convex, and pass the area and thickness minima.
+fn check_core(hv: &[Diff], core: &[Diff]) -> Result<(), Error> {
+    let count = core.len();
+    let at = |s: &[Diff], i: usize| s.get(i % count.max(1)).copied().unwrap_or_default();
+    let sub = |a: Diff, b: Diff| (a.0.saturating_sub(b.0), a.1.saturating_sub(b.1));
+    let (mut lo, mut hi) = (at(core, 0), at(core, 0));
+    let mut area2 = 0i128;
+    for i in 0..count {
+        let e = sub(at(hv, i.saturating_add(1)), at(hv, i));
+        let c = sub(at(core, i.saturating_add(1)), at(core, i));
+        let c_next = sub(at(core, i.saturating_add(2)), at(core, i.saturating_add(1)));
+        if dot(e, c) <= 0 || cross(c, c_next) <= 0 {
+            return Err(BAD_ROUNDING);
+        }
+        let p = at(core, i);
+        lo = (lo.0.min(p.0), lo.1.min(p.1));
+        hi = (hi.0.max(p.0), hi.1.max(p.1));
+        area2 = area2.saturating_add(cross(p, at(core, i.saturating_add(1))));
+    }
+    let longest_side = (hi.0.saturating_sub(lo.0)).max(hi.1.saturating_sub(lo.1));
+    let min_area2 = i128::from(MIN_POLYGON_AREA.to_bits()).saturating_mul(1 << 33);
+    let min_thin2 =
+        i128::from(MIN_POLYGON_THICKNESS.to_bits()).saturating_mul(2).saturating_mul(longest_side);
+    if area2 < min_area2 || area2 < min_thin2 {
+        return Err(BAD_ROUNDING);
+    }
+    Ok(())
+}
+
+/// Area, first moment and polar second moment of a rounded polygon about the
+/// origin of its core's coordinates, in units of 2^-64 (m², m³, m⁴).
+struct Moments {
+    area: i128,
+    sx: i128,
+    sy: i128,
+    inertia: i128,
+}
+
+/// The moments of the points within `r` (raw bits) of the convex polygon `core`
+/// (raw bits, counter-clockwise, within 128 m of the origin): the core, a
+/// rectangle `ℓ × r` outside each edge and a sector of angle φ at each vertex.
+///
+/// Per edge `a → b` (ℓ its length, `m` its midpoint, `N = ℓ n` its outward
+/// normal scaled by its length, exact): area `r ℓ`, first moment
+/// `r ℓ m + r² N / 2`, second moment `r ℓ (ℓ²/12 + |m|² + r²/3) + r² m·N`.
+/// Per vertex `p` between the normals `n₀` and `n₁`: area `φ r² / 2`, first
+/// moment `φ r² p / 2 + r³ (n₁ − n₀)⊥ / 3` (the sector's own first moment about
+/// its apex, with `(x, y)⊥ = (y, −x)`), second moment
+/// `φ r⁴ / 4 + 2 r³ p·(n₁ − n₀)⊥ / 3 + φ r² |p|² / 2`. The sectors' angles sum
+/// to 2π, so their areas are summed as `π r²` and their `φ r⁴ / 4` as `π r⁴ / 2`
+/// exactly; `φ` itself (from `atan2`, within 1.2e-10 rad, then corrected to sum
+/// to 2π) only weighs the vertex positions.
+fn rounded_moments(core: &[Diff], r: i128) -> Result<Moments, Error> {
+    let count = core.len();
+    let at = |i: usize| core.get(i % count.max(1)).copied().unwrap_or_default();
+    let edge = |i: usize| {
+        let (a, b) = (at(i), at(i.saturating_add(1)));
+        (b.0.saturating_sub(a.0), b.1.saturating_sub(a.1))
+    };
+    let q64 = |v: i128| v.saturating_mul(1 << 32);
+    let rq = q64(r);
+    let r2 = mulq(rq, rq)?;
+    let r3 = mulq(r2, rq)?;
+    let ru: u128 = r.unsigned_abs();
+
+    // π r² and π r⁴ / 2 (units 2^-64), as circle_area and circle_unit_inertia form them.
+    let r2_raw = ru.saturating_mul(ru);
+    let pi_r2 = U256::mul(r2_raw, PI_Q64).div_round(64, 1).ok_or(TOO_LARGE)?;
+    let r4 = U256::mul(r2_raw, r2_raw).div_round(64, 1).ok_or(TOO_LARGE)?;
+    let pi_r4_2 = U256::mul(r4, PI_Q64).div_round(65, 1).ok_or(TOO_LARGE)?;
+    let to_i = |v: u128| i128::try_from(v).map_err(|_| TOO_LARGE);
+
+    // The sectors' angles (units 2^-64 rad), corrected so they sum to 2π: each
+    // gets an equal share of what the rounded atan2 values miss (so equal
+    // corners, as a rectangle's, get exactly equal angles).
+    let mut phis = [0i128; MAX_POLYGON_VERTICES];
+    let mut sum = 0i128;
+    for (i, slot) in phis.iter_mut().enumerate().take(count) {
+        let prev = edge(i.saturating_add(count).saturating_sub(1));
+        *slot = q64(i128::from(turn_angle(prev, edge(i)).to_bits()));
+        sum = sum.saturating_add(*slot);
+    }
+    let two_pi = to_i(PI_Q64)?.saturating_mul(2);
+    let share = div_round(two_pi.saturating_sub(sum), i128::try_from(count).unwrap_or(1));
+    for slot in phis.iter_mut().take(count) {
+        *slot = slot.saturating_add(share);
+    }
+
+    let mut area2_core = 0i128;
+    let (mut sx, mut sy) = (0i128, 0i128);
+    let (mut ipos, mut ineg) = (U256::default(), U256::default());
+    let mut area = to_i(pi_r2)?;
+    let mut inertia = to_i(pi_r4_2)?;
+    for i in 0..count {
+        let (a, b) = (at(i), at(i.saturating_add(1)));
+        // Core: the triangle (origin, a, b), signed.
+        let d = cross(a, b);
+        area2_core = area2_core.saturating_add(d);
+        let den = 6i128 << 32;
+        sx = sx.saturating_add(div_round(d.saturating_mul(a.0.saturating_add(b.0)), den));
+        sy = sy.saturating_add(div_round(d.saturating_mul(a.1.saturating_add(b.1)), den));
+        let s2 = dot(a, a).saturating_add(dot(a, b)).saturating_add(dot(b, b));
+        let term = U256::mul(d.unsigned_abs(), s2.unsigned_abs());
+        if d >= 0 {
+            ipos = ipos.add(term);
+        } else {
+            ineg = ineg.add(term);
+        }
+
+        // Edge rectangle.
+        let c = edge(i);
+        let len2 = dot(c, c);
+        let ell = super::wide::sqrt_q62(len2.unsigned_abs()).ok_or(TOO_LARGE)?;
+        let ell = to_i(ell.saturating_add(1 << 29) >> 30)?; // units 2^-64 m
+        let ae = mulq(rq, ell)?;
+        area = area.saturating_add(ae);
+        let mid = (
+            a.0.saturating_add(b.0).saturating_mul(1 << 31),
+            a.1.saturating_add(b.1).saturating_mul(1 << 31),
+        );
+        let nn = (q64(c.1), q64(c.0.saturating_neg()));
+        sx = sx.saturating_add(mulq(ae, mid.0)?).saturating_add(mulq(r2, nn.0)? / 2);
+        sy = sy.saturating_add(mulq(ae, mid.1)?).saturating_add(mulq(r2, nn.1)? / 2);
+        let mm = mulq(mid.0, mid.0)?.saturating_add(mulq(mid.1, mid.1)?);
+        let bracket = div_round(len2, 12).saturating_add(mm).saturating_add(r2 / 3);
+        let mn = mulq(mid.0, nn.0)?.saturating_add(mulq(mid.1, nn.1)?);
+        inertia = inertia.saturating_add(mulq(ae, bracket)?).saturating_add(mulq(r2, mn)?);
+
+        // Corner sector at a, between the normals of the edges before and after it.
+        let prev = edge(i.saturating_add(count).saturating_sub(1));
+        let phi = phis.get(i).copied().unwrap_or_default();
+        let (n0, n1) = (unit_normal_q62(prev), unit_normal_q62(c));
+        let dn = (n1.0.saturating_sub(n0.0).saturating_mul(4), n1.1.saturating_sub(n0.1).saturating_mul(4));
+        let rp = (dn.1, dn.0.saturating_neg());
+        let p = (q64(a.0), q64(a.1));
+        let sa = mulq(phi, r2)? / 2;
+        sx = sx.saturating_add(mulq(sa, p.0)?).saturating_add(mulq(r3, rp.0)? / 3);
+        sy = sy.saturating_add(mulq(sa, p.1)?).saturating_add(mulq(r3, rp.1)? / 3);
+        let prp = mulq(p.0, rp.0)?.saturating_add(mulq(p.1, rp.1)?);
+        let pp = mulq(p.0, p.0)?.saturating_add(mulq(p.1, p.1)?);
+        inertia = inertia.saturating_add(mulq(r3, prp)?.saturating_mul(2) / 3).saturating_add(mulq(sa, pp)?);
+    }
+    // Core: area2 in 2^-64 m² is twice the area; Σ d (a·a + a·b + b·b) / 12 in
+    // 2^-128 m⁴ → 2^-64: / (3 · 2^66).
+    area = area.saturating_add(div_round(area2_core, 2));
+    // The core's second moment about the origin is positive (a polygon's polar
+    // moment about any point is), so the signed triangles sum to at least 0.
+    let core_i = to_i(ipos.saturating_sub(ineg).div_round(66, 3).ok_or(TOO_LARGE)?)?;
+    inertia = inertia.saturating_add(core_i);
+    if area <= 0 {
+        return Err(BAD_ROUNDING);
+    }
+    Ok(Moments { area, sx, sy, inertia })
+}
+
+/// The angle (rad, in (0, π) for a convex corner) turning the direction `a` into
+/// `b`, from the crate's `atan2` on the exact cross and dot products scaled down
+/// to fit a `Scalar` (a shift of both, which keeps the direction to 2^-61).
+fn turn_angle(a: Diff, b: Diff) -> Scalar {
+    let (y, x) = (cross(a, b), dot(a, b));
+    let m = y.unsigned_abs().max(x.unsigned_abs());
+    let shift = (128u32.saturating_sub(m.leading_zeros())).saturating_sub(62);
+    let fit = |v: i128| Scalar::from_bits(i64::try_from(v >> shift).unwrap_or(0));
+    atan2(fit(y), fit(x))
+}
+
+/// The outward unit normal of the counter-clockwise edge `d` in units of 2^-62
+/// (as [`outward_normal`], with 30 more bits: within a few units of 2^-62).
+fn unit_normal_q62(d: Diff) -> Diff {
+    let (nx, ny) = (d.1, d.0.saturating_neg());
+    let m = nx.unsigned_abs().max(ny.unsigned_abs());
+    if m == 0 {
+        return (0, 0);
+    }
+    let bit_len = 128u32.saturating_sub(m.leading_zeros());
+    let shift = 61u32.saturating_sub(bit_len);
+    let (sx, sy) = (nx.checked_shl(shift).unwrap_or(nx), ny.checked_shl(shift).unwrap_or(ny));
+    let len2 = sx.unsigned_abs().saturating_pow(2).saturating_add(sy.unsigned_abs().saturating_pow(2));
+    let len = i128::try_from(len2.isqrt()).unwrap_or(i128::MAX);
+    (div_round(sx.saturating_mul(1 << 62), len), div_round(sy.saturating_mul(1 << 62), len))
+}
+
+/// `a · b / 2^64` rounded to nearest (ties away from zero), exact in 256 bits;
+/// [`TOO_LARGE`] when it does not fit an `i128`.
+fn mulq(a: i128, b: i128) -> Result<i128, Error> {
+    let p = U256::mul(a.unsigned_abs(), b.unsigned_abs()).div_round(64, 1).ok_or(TOO_LARGE)?;
+    let p = i128::try_from(p).map_err(|_| TOO_LARGE)?;
+    Ok(if (a < 0) != (b < 0) { p.saturating_neg() } else { p })
 }
