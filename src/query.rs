@@ -11,11 +11,12 @@ use crate::body::{Body, BodyHandle, Shape};
 use crate::collide::{time_of_impact, Swept};
 use crate::collision::{collide_shapes, ShapeRef};
 use crate::error::Error;
-use crate::geometry::ray::{polygon_contains, ray_circle, ray_polygon};
+use crate::geometry::ray::{
+    capsule_contains, polygon_contains, ray_capsule, ray_circle, ray_polygon, ray_segment,
+};
 use crate::geometry::{Capsule, PolygonPath, Segment};
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rect, Transform, Vector2};
-use crate::pending::{capsule_contains, ray_capsule, ray_segment};
 use crate::world::World;
 
 /// Which bodies a query sees.

@@ -139,11 +139,15 @@ fn capsule_errors_name_what_is_wrong() {
     for r in [0.0, -0.5, 128.001] {
         assert_eq!(Capsule::new(a, b, s(r)), Err(out_of_range("capsule radius")), "r = {r}");
     }
-    // |centre| + r = 128 exactly is allowed; a hair more is not.
+    // Half the length + r = 128 exactly is allowed, wherever it is; a hair
+    // more is not (a body re-centres the capsule).
     assert!(Capsule::new(v(127.0, 0.0), v(-127.0, 0.0), s(1.0)).is_ok());
+    assert!(Capsule::new(v(1000.0, 0.0), v(1254.0, 0.0), s(1.0)).is_ok());
     assert!(Capsule::new(v(0.0, 0.0), v(0.0, 0.0), MAX_CIRCLE_RADIUS).is_ok());
-    assert_eq!(Capsule::new(v(0.0, 0.0), v(127.0 + ULP, 0.0), s(1.0)), Err(out_of_range("capsule size")));
-    assert_eq!(Capsule::new(v(90.0, 90.0), v(0.0, 0.0), s(1.0)), Err(out_of_range("capsule size")));
+    assert_eq!(Capsule::new(v(0.0, 0.0), v(254.0 + ULP, 0.0), s(1.0)), Err(out_of_range("capsule size")));
+    assert_eq!(Capsule::new(v(180.0, 180.0), v(0.0, 0.0), s(1.0)), Err(out_of_range("capsule size")));
+    let far = 2f64.powi(20) + 1.0;
+    assert_eq!(Capsule::new(v(far, 0.0), v(far, 0.0), s(1.0)), Err(out_of_range("capsule size")));
     assert_eq!(Capsule::new(v(1.0, 0.0), v(1.0, 0.0), s(200.0)), Err(out_of_range("capsule radius")));
 }
 
@@ -183,9 +187,12 @@ fn segment_errors_name_what_is_wrong() {
     assert_eq!(Segment::new(p, short), Err(out_of_range("segment length")));
     let shortest = Vector2::new(p.x + MIN_SEGMENT_LENGTH, p.y);
     assert!(Segment::new(p, shortest).is_ok(), "exactly the minimum length is allowed");
-    assert!(Segment::new(v(128.0, 0.0), v(0.0, -128.0)).is_ok(), "128 m exactly is allowed");
-    assert_eq!(Segment::new(v(0.0, 0.0), v(0.0, 128.0 + ULP)), Err(out_of_range("segment size")));
-    assert_eq!(Segment::new(v(91.0, 91.0), v(0.0, 0.0)), Err(out_of_range("segment size")));
+    assert!(Segment::new(v(128.0, 0.0), v(-128.0, 0.0)).is_ok(), "256 m exactly is allowed");
+    assert!(Segment::new(v(500.0, 0.0), v(500.0, 256.0)).is_ok(), "anywhere in the world");
+    assert_eq!(Segment::new(v(0.0, 0.0), v(0.0, 256.0 + ULP)), Err(out_of_range("segment size")));
+    assert_eq!(Segment::new(v(182.0, 182.0), v(0.0, 0.0)), Err(out_of_range("segment size")));
+    let far = 2f64.powi(20) + 1.0;
+    assert_eq!(Segment::new(v(far, 0.0), v(far, 1.0)), Err(out_of_range("segment size")));
 }
 
 // ---------------------------------------------------------------- rounded polygons

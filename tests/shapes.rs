@@ -329,8 +329,11 @@ fn bad_shapes_are_clear_errors() {
         PolygonPath::rounded(&[v(0.0, 0.0), v(1.0, 0.0), v(0.0, 1.0)], s(0.3)),
         Err(Error::OutOfRange { what: "rounding radius" })
     );
-    assert!(Segment::new(v(0.0, 0.0), v(300.0, 0.0)).is_err());
-    assert!(Capsule::new(v(0.0, 0.0), v(100.0, 0.0), s(40.0)).is_err());
+    assert_eq!(Segment::new(v(0.0, 0.0), v(300.0, 0.0)), Err(Error::OutOfRange { what: "segment size" }));
+    assert_eq!(
+        Capsule::new(v(0.0, 0.0), v(200.0, 0.0), s(40.0)),
+        Err(Error::OutOfRange { what: "capsule size" })
+    );
 }
 
 // ---- shape casts ----------------------------------------------------------------------

@@ -124,10 +124,16 @@ fn midpoint(a: Vector2, b: Vector2) -> Vector2 {
     Vector2::new(half(a.0, b.0), half(a.1, b.1))
 }
 
-/// True when `p` is within `limit` (≥ 0) of the origin, exactly.
-fn within(p: Vector2, limit: Scalar) -> bool {
-    let l = limit.to_bits().unsigned_abs().into();
-    dist2(p, Vector2::ZERO) <= u128::saturating_mul(l, l)
+/// True when `|a − b| ≤ 2·half` (`half` ≥ 0), exactly.
+fn within_length(a: Vector2, b: Vector2, half: Scalar) -> bool {
+    let l = u128::from(half.to_bits().unsigned_abs()).saturating_mul(2);
+    dist2(a, b) <= l.saturating_mul(l)
+}
+
+/// True when both coordinates are within the world's coordinate range.
+fn in_world(p: Vector2) -> bool {
+    let max = crate::limits::MAX_COORDINATE;
+    p.x.abs() <= max && p.y.abs() <= max
 }
 
 /// The bounding box of the segment `a`–`b` placed at `xf`, grown by `margin`.
@@ -148,9 +154,11 @@ impl Capsule {
     /// # Errors
     /// [`Error::OutOfRange`] with `what`:
     /// * `"capsule radius"` unless `0 < radius ≤` [`MAX_CIRCLE_RADIUS`];
-    /// * `"capsule size"` when a centre's distance from the origin plus the
-    ///   radius exceeds [`MAX_CIRCLE_RADIUS`] (the body radius limit: the whole
-    ///   capsule lies within 128 m of the body's origin), checked exactly.
+    /// * `"capsule size"` when the capsule is longer than a body may be (half
+    ///   its core length plus the radius above [`MAX_CIRCLE_RADIUS`], 128 m:
+    ///   a body re-centres it, and then it lies within 128 m of its centre),
+    ///   or a centre is outside the world's coordinate range
+    ///   (±[`MAX_COORDINATE`](crate::limits::MAX_COORDINATE)); checked exactly.
     ///
     /// [`circle_area`]: super::circle_area
     /// [`circle_unit_inertia`]: super::circle_unit_inertia
@@ -159,7 +167,7 @@ impl Capsule {
             return Err(Error::OutOfRange { what: "capsule radius" });
         }
         let reach = MAX_CIRCLE_RADIUS - radius;
-        if !within(center1, reach) || !within(center2, reach) {
+        if !in_world(center1) || !in_world(center2) || !within_length(center1, center2, reach) {
             return Err(CAPSULE_TOO_LARGE);
         }
         Ok(Self { center1, center2, radius })
@@ -257,8 +265,10 @@ impl Segment {
     /// * `"segment length"` when the segment is shorter than
     ///   [`MIN_SEGMENT_LENGTH`] (zero length included: its normal would be
     ///   undefined);
-    /// * `"segment size"` when an end is farther than [`MAX_CIRCLE_RADIUS`]
-    ///   (128 m, the body radius limit) from the origin.
+    /// * `"segment size"` when it is longer than a body may be (twice
+    ///   [`MAX_CIRCLE_RADIUS`], 256 m: a body re-centres it, and then it lies
+    ///   within 128 m of its centre), or an end is outside the world's
+    ///   coordinate range (±[`MAX_COORDINATE`](crate::limits::MAX_COORDINATE)).
     ///
     /// Both are checked exactly, in that order.
     pub fn new(point1: Vector2, point2: Vector2) -> Result<Self, Error> {
@@ -266,7 +276,7 @@ impl Segment {
         if dist2(point1, point2) < min.saturating_mul(min) {
             return Err(Error::OutOfRange { what: "segment length" });
         }
-        if !within(point1, MAX_CIRCLE_RADIUS) || !within(point2, MAX_CIRCLE_RADIUS) {
+        if !in_world(point1) || !in_world(point2) || !within_length(point1, point2, MAX_CIRCLE_RADIUS) {
             return Err(Error::OutOfRange { what: "segment size" });
         }
         Ok(Self { point1, point2 })

@@ -154,10 +154,16 @@ impl World<'_> {
                 // Re-validated: a definition's capsule may have been built
                 // with other ends than these re-centred ones.
                 let c = Capsule::new(c.center1(), c.center2(), c.radius())?;
+                if c.bounding_radius() > MAX_BODY_RADIUS {
+                    return Err(Error::OutOfRange { what: "capsule size" });
+                }
                 Ok((c.area()?, c.unit_inertia()?, c.bounding_radius()))
             }
             Shape::Segment(s) => {
                 let s = Segment::new(s.point1(), s.point2())?;
+                if s.bounding_radius() > MAX_BODY_RADIUS {
+                    return Err(Error::OutOfRange { what: "segment size" });
+                }
                 // No area: a dynamic segment takes its mass outright (see
                 // `dynamic_mass`), its inertia that of a thin rod.
                 Ok((scalar::ONE, s.rod_unit_inertia(), s.bounding_radius()))
