@@ -17,11 +17,11 @@ use arphysics::index::SortAndSweepIndex;
 use arphysics::query::{QueryFilter, QueryShape, RayHit};
 use arphysics::CollisionFilter;
 use arphysics::{
-    Arbiter, Body, BodyDef, Capsule, Segment, Shape, BodyHandle, BodyType, CallbackContext, Capacities, ConstraintHandle, Error,
-    FnHandler, ForceGenerator, Generator, GeneratorHandle, GeneratorMut, GravityForceGenerator,
+    Arbiter, Body, BodyDef, BodyHandle, BodyType, CallbackContext, Capacities, Capsule, ConstraintHandle,
+    Error, FnHandler, ForceGenerator, Generator, GeneratorHandle, GeneratorMut, GravityForceGenerator,
     GravityToPointForceGenerator, Handle, Handler, Hook, Index, Joint, JointDef, JointHandle, JointKind,
     LinearForceGenerator, MaxTorque, Motor, PairSink, PathHandle, PolygonPath, Proxy, Rect, Rot, Scalar,
-    SpatialIndex, Storage, Transform, Vector2, World, WorldDef,
+    Segment, Shape, SpatialIndex, Storage, Transform, Vector2, World, WorldDef,
 };
 
 /// Most ops a run executes (keeps one input's run short).
