@@ -151,7 +151,7 @@
 //! | Box2D v3 | Chipmunk | arphysics |
 //! |---|---|---|
 //! | `b2WorldDef`, `b2CreateWorld` | `cpSpaceNew` | [`WorldDef`], [`World::new`] / [`World::with_capacities`] (capacities fixed up front) |
-//! | `b2BodyDef` + `b2ShapeDef` + `b2CreatePolygonShape` | `cpBodyNew` + `cpPolyShapeNew` | [`BodyDef::circle`] / [`BodyDef::polygon`]: one shape per body; polygons share a [`PolygonPath`] |
+//! | `b2BodyDef` + `b2ShapeDef` + `b2CreatePolygonShape` / `Capsule` / `Segment` | `cpBodyNew` + `cpPolyShapeNew` / `cpSegmentShapeNew` | [`BodyDef::circle`] / [`BodyDef::polygon`] / [`BodyDef::capsule`] / [`BodyDef::segment`]: one shape per body; polygons share a [`PolygonPath`] ([`PolygonPath::rounded`] for `b2MakeRoundedBox`) |
 //! | `b2BodyId` (world + index + generation) | `cpBody*` | [`BodyHandle`] (index + generation + world tag; stale or foreign ⇒ [`Error::StaleHandle`]) |
 //! | `b2_staticBody` / `b2_kinematicBody` / `b2_dynamicBody` | `cpBodyNewStatic` / kinematic / dynamic | [`BodyType`] |
 //! | `b2BodyDef::isBullet`, continuous collision | — | [`BodyDef::bullet`]; fast bodies are always swept against static and kinematic bodies ([`continuous`]) |
@@ -165,7 +165,7 @@
 //! | joint break (`b2Joint_GetConstraintForce` + destroy) | — | [`JointDef::breakable`], [`World::joint_broke_events`] |
 //! | `cpSpaceAddPostStepCallback` | same | [`CallbackContext::add_post_step_callback`] |
 //! | `b2RevoluteJoint`, `b2WeldJoint`, `b2DistanceJoint`, motor, limits, springs | `cpPivotJoint`, `cpDampedSpring`, `cpSlideJoint`… | [`JointKind`]: `Pivot` (limits, motor), `Weld`, `Rod`, `Rope`, `Spring`, `DampedSpring`; breakable |
-//! | `b2World_CastRay`, `b2World_OverlapAABB` | `cpSpaceSegmentQuery`, `cpSpaceBBQuery` | [`World::ray_cast`], [`World::ray_cast_all`], [`World::query_aabb`], [`World::query_point`], [`World::query_shape`] |
+//! | `b2World_CastRay`, `b2World_CastShape`, `b2World_OverlapAABB` | `cpSpaceSegmentQuery`, `cpSpaceBBQuery` | [`World::ray_cast`], [`World::ray_cast_all`], [`World::shape_cast`], [`World::query_aabb`], [`World::query_point`], [`World::query_shape`] |
 //! | `b2World_Step(world, dt, subSteps)` | `cpSpaceStep` | [`World::step`]; sub-steps in [`WorldDef::substeps`] |
 //! | floats, SIMD, threads | floats | Q32.32 fixed point, one thread, the same bits everywhere; [`World::snapshot`] / [`World::restore`] / [`World::state_hash`] |
 //!
