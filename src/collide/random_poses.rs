@@ -19,6 +19,7 @@
 //!
 //! Overlapping cores must give a contact with a negative separation.
 
+use super::toi::{time_of_impact, Swept};
 use super::*;
 use crate::geometry::{Capsule, PolygonPath, Segment};
 use crate::math::{Rot, Scalar, Transform, Vector2};
@@ -248,4 +249,75 @@ fn random_poses_keep_the_contract_against_the_brute_force_gap() {
     }
     // The poses cover both regimes.
     assert!(apart > 10_000 && overlapping > 5_000, "{apart} apart, {overlapping} overlapping");
+}
+
+fn swept(shape: Shape<'_>) -> Swept<'_> {
+    match shape {
+        Shape::Circle(r) => Swept::Circle(r),
+        Shape::Capsule(c) => Swept::Capsule(c),
+        Shape::Segment(s) => Swept::Segment(s),
+        Shape::Polygon(p) => Swept::Polygon(p),
+    }
+}
+
+#[test]
+fn random_sweeps_are_never_late_and_exact_ones_never_early() {
+    let capsule = Capsule {
+        center1: Vector2::from_int(-1, 0),
+        center2: Vector2::from_int(1, 0),
+        radius: Scalar::lit("0.3"),
+    };
+    let segment = Segment { point1: Vector2::from_int(-2, 0), point2: Vector2::from_int(1, 1) };
+    let boxy = PolygonPath::rectangle(Scalar::lit("1.5"), Scalar::ONE).unwrap_or_else(|_| unreachable!());
+    let rounded = PolygonPath { rounding: Scalar::lit("0.1"), ..boxy };
+    let shapes = [
+        Shape::Circle(Scalar::lit("0.25")),
+        Shape::Capsule(&capsule),
+        Shape::Segment(&segment),
+        Shape::Polygon(&boxy),
+        Shape::Polygon(&rounded),
+    ];
+    let gap = Scalar::lit("0.05");
+    let mut rng = Rng(0x70E5_1A7E_0000_0001);
+    let (mut hits, mut misses) = (0, 0);
+    for k in 0..6_000usize {
+        let (a, b) = (shapes[k % 5], shapes[(k / 5) % 5]);
+        if matches!((a, b), (Shape::Segment(_), Shape::Segment(_))) {
+            continue;
+        }
+        let (xa, xb) = (rng.pose(0.5), rng.pose(4.0));
+        let d = Vector2::new(rng.range(-8.0, 8.0), rng.range(-8.0, 8.0));
+        let t = time_of_impact(swept(a), xa, swept(b), xb, d, gap);
+        let moved = |s: f64| Transform::new(xb.p + d * Scalar::from_num(s), xb.q);
+        let gap_at = |s: f64| {
+            let (distance, radii) = brute_force(a, xa, b, moved(s));
+            distance - radii
+        };
+        let target = gap.to_f64();
+        // Never late: no earlier time is already within the gap.
+        let (end, last) = t.map_or((1.0, 48), |t| (t.to_f64(), 47));
+        for i in 0..=last {
+            let s = end * f64::from(i) / 48.0;
+            if t.is_some() && s >= end {
+                continue;
+            }
+            assert!(gap_at(s) > target - TOL, "case {k}: within the gap at {s}, answer {t:?}");
+        }
+        match t {
+            None => misses += 1,
+            Some(t) => {
+                hits += 1;
+                // Exact unless both are polygons (Cyrus–Beck, early near corners).
+                let exact = !matches!((a, b), (Shape::Polygon(_), Shape::Polygon(_)));
+                if exact {
+                    assert!(
+                        gap_at(t.to_f64()) < target + TOL,
+                        "case {k}: early, {} at {t:?}",
+                        gap_at(t.to_f64())
+                    );
+                }
+            }
+        }
+    }
+    assert!(hits > 500 && misses > 500, "{hits} hits, {misses} misses");
 }
