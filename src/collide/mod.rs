@@ -31,6 +31,7 @@
 
 mod capsule_capsule;
 mod capsule_circle;
+mod chain_segment;
 mod circle_circle;
 mod manifold;
 mod polygon_capsule;
@@ -42,6 +43,10 @@ mod toi;
 
 pub use capsule_capsule::{collide_capsules, collide_segment_capsule, FACE_COSINE};
 pub use capsule_circle::{collide_capsule_circle, collide_segment_circle};
+pub use chain_segment::{
+    collide_chain_segment_capsule, collide_chain_segment_circle, collide_chain_segment_polygon,
+    CHAIN_FACE_SINE,
+};
 pub use circle_circle::collide_circles;
 pub use manifold::{Manifold, ManifoldPoint, MAX_MANIFOLD_POINTS};
 pub use polygon_capsule::{collide_polygon_capsule, collide_segment_polygon};
@@ -50,6 +55,15 @@ pub use polygon_polygon::{collide_polygons, REFERENCE_FACE_TOLERANCE};
 pub(crate) use toi::{time_of_impact, Swept};
 
 use crate::math::{Rot, Scalar, Vector2};
+
+// `ChainSegment` belongs to `geometry` (src/geometry/chain_segment.rs), whose
+// mod.rs this branch does not edit: until it declares the module
+// (`pub mod chain_segment;` and `pub use chain_segment::ChainSegment;`), the
+// file is compiled from here. Then these lines become
+// `use crate::geometry::ChainSegment;`.
+#[path = "../geometry/chain_segment.rs"]
+pub mod chain_segment_shape;
+pub use chain_segment_shape::ChainSegment;
 
 /// The index after `i` around a polygon of `count` vertices (edge `i` runs from
 /// vertex `i` to vertex `next_index(i, count)`).

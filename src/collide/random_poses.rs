@@ -321,3 +321,53 @@ fn random_sweeps_are_never_late_and_exact_ones_never_early() {
     }
     assert!(hits > 500 && misses > 500, "{hits} hits, {misses} misses");
 }
+
+#[test]
+fn random_poses_against_chain_links_give_unit_normals_from_the_front() {
+    // A link at a convex corner, one at a concave one, one between collinear
+    // links, and one whose ghosts coincide with its ends (no neighbours).
+    let link = |g1: (i32, i32), p1: (i32, i32), p2: (i32, i32), g2: (i32, i32)| ChainSegment {
+        ghost1: Vector2::from_int(g1.0, g1.1),
+        segment: Segment { point1: Vector2::from_int(p1.0, p1.1), point2: Vector2::from_int(p2.0, p2.1) },
+        ghost2: Vector2::from_int(g2.0, g2.1),
+    };
+    let links = [
+        link((2, 0), (1, 0), (0, 0), (0, -1)),
+        link((2, 0), (1, 0), (0, 0), (-1, 1)),
+        link((3, 0), (1, 0), (-1, 0), (-3, 0)),
+        link((1, 1), (1, 1), (-1, 0), (-1, 0)),
+    ];
+    let capsule = Capsule {
+        center1: Vector2::from_int(-1, 0),
+        center2: Vector2::from_int(1, 0),
+        radius: Scalar::lit("0.3"),
+    };
+    let rounded = PolygonPath {
+        rounding: Scalar::lit("0.1"),
+        ..PolygonPath::rectangle(Scalar::lit("1.5"), Scalar::ONE).unwrap_or_else(|_| unreachable!())
+    };
+    let mut rng = Rng(0xC4A1_0000_5EED_0002);
+    let mut contacts = 0;
+    for k in 0..20_000usize {
+        let chain = &links[k % links.len()];
+        let (xa, xb) = (rng.pose(0.5), rng.pose(2.0));
+        let margin = Scalar::lit("0.2");
+        let m = match (k / links.len()) % 3 {
+            0 => collide_chain_segment_circle(chain, xa, Scalar::lit("0.4"), xb, margin),
+            1 => collide_chain_segment_capsule(chain, xa, &capsule, xb, margin),
+            _ => collide_chain_segment_polygon(chain, xa, &rounded, xb, margin),
+        };
+        assert!(m.count <= 2);
+        if m.count > 0 {
+            contacts += 1;
+            let n = m.normal.to_f64();
+            assert!((n.0 * n.0 + n.1 * n.1 - 1.0).abs() < 1e-6, "case {k}: {n:?}");
+            // The normal leaves the link's front: never against its outward side.
+            let seg = chain.segment;
+            let d = xa.q.rotate(seg.point2 - seg.point1);
+            let outward = d.right_perp();
+            assert!(m.normal.dot(outward) > Scalar::ZERO, "case {k}: {:?}", m.normal);
+        }
+    }
+    assert!(contacts > 2_000, "{contacts}");
+}
