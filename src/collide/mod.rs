@@ -2,7 +2,10 @@
 //! says may touch.
 //!
 //! One function per pair of shapes, named `collide_<shape a>_<shape b>`:
-//! [`collide_circles`], [`collide_polygon_circle`] and [`collide_polygons`]. Each
+//! [`collide_circles`], [`collide_polygon_circle`], [`collide_polygons`],
+//! [`collide_capsule_circle`], [`collide_segment_circle`], [`collide_capsules`],
+//! [`collide_segment_capsule`], [`collide_polygon_capsule`] and
+//! [`collide_segment_polygon`] (segments never collide with segments). Each
 //! takes the two shapes with their body transforms and a `margin` (m): points are
 //! reported while the shapes are at most `margin` apart (separation ≤ margin), so
 //! the solver sees contacts a little before they happen (speculative contacts,
@@ -17,22 +20,50 @@
 //! result is a function of the inputs' bits alone (all ties are broken by index
 //! order, as each function documents).
 //!
+//! Rounded shapes (capsules, segments as capsules of radius 0, polygons with a
+//! [`rounding`](crate::geometry::PolygonPath::rounding) radius) are a convex core
+//! grown by a radius: the contact is the cores' with the separation less both
+//! radii and each point midway between the rounded surfaces.
+//!
 //! The approach follows the narrow phase of Box2D v3 (separating axes, reference
-//! face, clipping, feature ids for warm starting), written for fixed point.
+//! face, clipping, feature ids for warm starting; a capsule against a polygon as
+//! a two-vertex polygon with a radius), written for fixed point.
 
+mod capsule_capsule;
+mod capsule_circle;
+mod chain_segment;
 mod circle_circle;
 mod manifold;
+mod polygon_capsule;
 mod polygon_circle;
 mod polygon_polygon;
+#[cfg(all(test, feature = "std"))]
+mod random_poses;
 mod toi;
 
+pub use capsule_capsule::{collide_capsules, collide_segment_capsule, FACE_COSINE};
+pub use capsule_circle::{collide_capsule_circle, collide_segment_circle};
+pub use chain_segment::{
+    collide_chain_segment_capsule, collide_chain_segment_circle, collide_chain_segment_polygon,
+    CHAIN_FACE_SINE,
+};
 pub use circle_circle::collide_circles;
 pub use manifold::{Manifold, ManifoldPoint, MAX_MANIFOLD_POINTS};
+pub use polygon_capsule::{collide_polygon_capsule, collide_segment_polygon};
 pub use polygon_circle::collide_polygon_circle;
 pub use polygon_polygon::{collide_polygons, REFERENCE_FACE_TOLERANCE};
 pub(crate) use toi::{time_of_impact, Swept};
 
 use crate::math::{Rot, Scalar, Vector2};
+
+// `ChainSegment` belongs to `geometry` (src/geometry/chain_segment.rs), whose
+// mod.rs this branch does not edit: until it declares the module
+// (`pub mod chain_segment;` and `pub use chain_segment::ChainSegment;`), the
+// file is compiled from here. Then these lines become
+// `use crate::geometry::ChainSegment;`.
+#[path = "../geometry/chain_segment.rs"]
+pub mod chain_segment_shape;
+pub use chain_segment_shape::ChainSegment;
 
 /// The index after `i` around a polygon of `count` vertices (edge `i` runs from
 /// vertex `i` to vertex `next_index(i, count)`).

@@ -18,6 +18,9 @@ use crate::math::{Scalar, Transform};
 /// - centre on or inside the polygon: the normal of the face the centre is
 ///   closest to (least penetration), so the circle is pushed out the short way.
 ///
+/// A rounded polygon ([`PolygonPath::rounding`] > 0) is its core grown by the
+/// rounding radius: the distances above are the core's, less both radii.
+///
 /// Ties between faces go to the lower edge index. The point lies midway between
 /// the polygon's surface and the circle's, and its `id` is always 0: a single
 /// point whose impulse varies continuously as the circle rolls from a face
@@ -46,8 +49,11 @@ pub fn collide_polygon_circle(
     let Some((edge, face_separation)) = best else {
         return Manifold::EMPTY;
     };
+    // A rounded polygon's surface lies `rounding` out from its core: the core
+    // may be that much farther away (the sum is exact; 0 for a sharp polygon).
+    let radius = poly.rounding + radius_b;
     // The distance to the polygon is at least the face separation: far enough ⇒ done.
-    if face_separation > radius_b + margin {
+    if face_separation > radius + margin {
         return Manifold::EMPTY;
     }
     let (Some(&v1), Some(&v2), Some(&face_normal)) =
@@ -78,12 +84,12 @@ pub fn collide_polygon_circle(
         // Face region, or the centre inside: project the centre onto the face.
         None => (face_normal, centre - Direction::of(face_normal).scale(face_separation), face_separation),
     };
-    let separation = distance - radius_b;
+    let separation = distance - radius;
     if separation > margin {
         return Manifold::EMPTY;
     }
-    let local =
-        LocalPoint { point: surface_a + Direction::of(normal).scale(half(separation)), separation, id: 0 };
+    let offset = poly.rounding + half(separation);
+    let local = LocalPoint { point: surface_a + Direction::of(normal).scale(offset), separation, id: 0 };
     Manifold::from_local(xf_a, xf_b.p, normal, &[local], false)
 }
 

@@ -82,6 +82,19 @@ const _: () = assert!(MAX_POLYGON_VERTICES <= 16);
 /// vertex indices. Box2D v3 names its points by an A index and a B index in the
 /// same way.
 ///
+/// # Rounded polygons
+/// A polygon with a [`rounding`](PolygonPath::rounding) radius is its stored
+/// core grown by that radius. Everything above is computed on the cores; each
+/// separation is then less both radii (so the margin applies to the rounded
+/// surfaces) and each point lies midway between the rounded surfaces, the
+/// incident one its radius inside the incident core's point. A face contact of
+/// rounded polygons is therefore the sharp contact with the separation
+/// reduced by the radii, and two rounded corners meet along the
+/// vertex-to-vertex line with the true gap. A two-vertex polygon (a capsule or
+/// segment, see [`collide_polygon_capsule`](super::collide_polygon_capsule))
+/// goes through the same code. With both radii 0 the results are those of
+/// sharp polygons to the bit (adding an exact 0 changes nothing).
+///
 /// Degenerate polygons (no vertices) give an empty manifold.
 #[must_use]
 pub fn collide_polygons(
@@ -91,13 +104,18 @@ pub fn collide_polygons(
     xf_b: Transform,
     margin: Scalar,
 ) -> Manifold {
+    // Rounded polygons: the cores may be up to `radius` farther apart than the
+    // margin (the sum is exact, so a sharp pair sees `reach == margin`).
+    // (Sharp pairs, the common case, skip the saturating additions.)
+    let radius = poly_a.rounding + poly_b.rounding;
+    let reach = if radius == Scalar::ZERO { margin } else { margin + radius };
     let b_in_a = xf_a.inv_mul(xf_b);
     let verts_b_in_a = transform_vertices(poly_b, b_in_a);
     let verts_b_in_a = verts_b_in_a.get(..poly_b.vertices().len()).unwrap_or(&[]);
     let Some((edge_a, sep_a)) = max_separation(poly_a, verts_b_in_a, b_in_a.p) else {
         return Manifold::EMPTY;
     };
-    if sep_a > margin {
+    if sep_a > reach {
         return Manifold::EMPTY;
     }
     let a_in_b = xf_b.inv_mul(xf_a);
@@ -106,7 +124,7 @@ pub fn collide_polygons(
     let Some((edge_b, sep_b)) = max_separation(poly_b, verts_a_in_b, a_in_b.p) else {
         return Manifold::EMPTY;
     };
-    if sep_b > margin {
+    if sep_b > reach {
         return Manifold::EMPTY;
     }
 
@@ -120,6 +138,7 @@ pub fn collide_polygons(
             incident_vertices: verts_a_in_b,
             incident_rotation: a_in_b.q,
             reference_is_b: true,
+            radius,
         }
     } else {
         Reference {
@@ -130,6 +149,7 @@ pub fn collide_polygons(
             incident_vertices: verts_b_in_a,
             incident_rotation: b_in_a.q,
             reference_is_b: false,
+            radius,
         }
     };
     let mut points = [LocalPoint::default(); MAX_MANIFOLD_POINTS];
@@ -299,6 +319,8 @@ struct Reference<'a> {
     incident_rotation: Rot,
     /// The reference face is polygon B's.
     reference_is_b: bool,
+    /// The sum of both polygons' rounding radii (m): 0 for sharp polygons.
+    radius: Scalar,
 }
 
 impl Reference<'_> {
@@ -362,9 +384,21 @@ impl Reference<'_> {
         // with B's its first (`i1`).
         let base_id = self.pair_id(self.edge, k1);
         let (id2, id1) = if self.reference_is_b { (base_id | 1, base_id) } else { (base_id, base_id | 1) };
+        // Rounded polygons: the separation is the cores' minus both radii, and
+        // the incident surface lies its radius below the core point `p`. (With
+        // both radii 0 these are the sharp formulas, to the bit: adding an exact
+        // 0 changes nothing.)
+        let (radius, incident_rounding) = (self.radius, self.incident.rounding);
+        let rounded = radius != Scalar::ZERO;
         let face_point = |p: Vector2, id: u16| {
-            let separation = n_dir.dot(p - v1);
-            LocalPoint { point: p - n_dir.scale(half(separation)), separation, id }
+            let core = n_dir.dot(p - v1);
+            let (separation, offset) = if rounded {
+                let separation = core - radius;
+                (separation, incident_rounding + half(separation))
+            } else {
+                (core, half(core))
+            };
+            LocalPoint { point: p - n_dir.scale(offset), separation, id }
         };
         if outside_low || outside_high {
             // The incident edge lies wholly beside the strip: not proven
@@ -427,7 +461,11 @@ impl Reference<'_> {
                 }
                 let (direction, distance) = direction_and_length(d)?;
                 let id = ID_VERTEX_PAIR | self.pair_id(ia, ib);
-                let point = LocalPoint { point: a + direction * half(distance), separation: distance, id };
+                // Rounded corners: the gap is the distance less both radii, and
+                // the reference surface lies its radius out from the vertex.
+                let separation = distance - self.radius;
+                let point = a + direction * (self.poly.rounding + half(separation));
+                let point = LocalPoint { point, separation, id };
                 return Some((direction, point));
             }
         }
@@ -454,7 +492,7 @@ fn single(
 /// `0 ≤ tau ≤ length`, where `tau_p` and `tau_q` are the ends' coordinates
 /// across the strip. The caller guarantees the segment meets the strip, so a
 /// moved end's divisor (`tau_q − tau_p`) is never zero.
-fn clip_end(p: Vector2, q: Vector2, tau_p: Scalar, tau_q: Scalar, length: Scalar) -> Vector2 {
+pub(super) fn clip_end(p: Vector2, q: Vector2, tau_p: Scalar, tau_q: Scalar, length: Scalar) -> Vector2 {
     let (over, span) = if tau_p < Scalar::ZERO {
         (-tau_p, tau_q - tau_p)
     } else if tau_p > length {
@@ -807,6 +845,7 @@ mod tests {
             incident_vertices: &verts[..4],
             incident_rotation: Rot::IDENTITY,
             reference_is_b: false,
+            radius: ZERO,
         };
         let mut out = [LocalPoint::default(); MAX_MANIFOLD_POINTS];
         assert_eq!(reference.contact(ZERO, &mut out), Some((Vector2::Y, 1)));
