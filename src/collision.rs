@@ -15,7 +15,11 @@ use crate::hook::Hook;
 use crate::arbiter::{mix_friction, mix_restitution, Arbiter, ArbiterState, ArbiterStore, ContactPoint};
 use crate::arena::Arena;
 use crate::body::{Body, BodyHandle, BodyType, Shape};
-use crate::collide::{collide_circles, collide_polygon_circle, collide_polygons, Manifold};
+use crate::collide::{
+    collide_capsule_circle, collide_capsules, collide_circles, collide_polygon_capsule,
+    collide_polygon_circle, collide_polygons, collide_segment_capsule, collide_segment_circle,
+    collide_segment_polygon, Manifold,
+};
 use crate::constraint::{Joint, JointMarker};
 use crate::error::Error;
 use crate::events::{ContactBeginEvent, ContactHitEvent, Events, TOUCH_DISTANCE};
@@ -27,10 +31,6 @@ use crate::index::{
 };
 use crate::limits::SPECULATIVE_DISTANCE;
 use crate::math::{Rect, Scalar, Transform, Vector2};
-use crate::pending::{
-    collide_capsule_circle, collide_capsules, collide_polygon_capsule, collide_segment_capsule,
-    collide_segment_circle, collide_segment_polygon,
-};
 use crate::solver::SolverBody;
 use crate::step::StepContext;
 

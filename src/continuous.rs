@@ -95,11 +95,12 @@ fn core_extent(b: &Body, paths: &Arena<'_, PolygonPath>) -> Scalar {
 }
 
 /// The swept shape of a body.
-fn swept<'p>(b: &Body, paths: &'p Arena<'_, PolygonPath>) -> Option<Swept<'p>> {
-    match b.shape {
-        Shape::Circle { radius } => Some(Swept::Circle(radius)),
-        Shape::Polygon(h) => paths.get(h).map(Swept::Polygon),
-        Shape::Capsule(_) | Shape::Segment(_) => None,
+fn swept<'p>(b: &'p Body, paths: &'p Arena<'_, PolygonPath>) -> Option<Swept<'p>> {
+    match &b.shape {
+        Shape::Circle { radius } => Some(Swept::Circle(*radius)),
+        Shape::Polygon(h) => paths.get(*h).map(Swept::Polygon),
+        Shape::Capsule(c) => Some(Swept::Capsule(c)),
+        Shape::Segment(sg) => Some(Swept::Segment(sg)),
     }
 }
 

@@ -207,8 +207,6 @@ pub mod hook;
 pub mod index;
 pub mod limits;
 pub mod math;
-#[doc(hidden)]
-pub mod pending;
 pub mod query;
 pub mod snapshot;
 mod solver;

@@ -389,7 +389,8 @@ fn swept_of(shape: ShapeRef<'_>) -> Option<Swept<'_>> {
     match shape {
         ShapeRef::Circle(r) => Some(Swept::Circle(r)),
         ShapeRef::Polygon(p) => Some(Swept::Polygon(p)),
-        ShapeRef::Capsule(_) | ShapeRef::Segment(_) => None,
+        ShapeRef::Capsule(c) => Some(Swept::Capsule(c)),
+        ShapeRef::Segment(sg) => Some(Swept::Segment(sg)),
     }
 }
 

@@ -56,14 +56,7 @@ pub(crate) use toi::{time_of_impact, Swept};
 
 use crate::math::{Rot, Scalar, Vector2};
 
-// `ChainSegment` belongs to `geometry` (src/geometry/chain_segment.rs), whose
-// mod.rs this branch does not edit: until it declares the module
-// (`pub mod chain_segment;` and `pub use chain_segment::ChainSegment;`), the
-// file is compiled from here. Then these lines become
-// `use crate::geometry::ChainSegment;`.
-#[path = "../geometry/chain_segment.rs"]
-pub mod chain_segment_shape;
-pub use chain_segment_shape::ChainSegment;
+pub use crate::geometry::ChainSegment;
 
 /// The index after `i` around a polygon of `count` vertices (edge `i` runs from
 /// vertex `i` to vertex `next_index(i, count)`).

@@ -10,12 +10,14 @@
 //! chain of fixed-point operations.
 
 pub mod capsule;
+pub mod chain_segment;
 pub mod circle;
 pub mod mass;
 pub mod polygon_path;
 pub mod ray;
 
 pub use capsule::{Capsule, Segment, MIN_SEGMENT_LENGTH};
+pub use chain_segment::ChainSegment;
 pub use circle::{circle_area, circle_unit_inertia, MAX_CIRCLE_RADIUS};
 pub use mass::{MassData, MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};
 pub use polygon_path::{
