@@ -222,11 +222,8 @@ fn face_points(
     let mut count = 0;
     for (id, x) in (0u16..).zip(ordered) {
         if id == 1 && ordered[0] == ordered[1] {
-            // One point where the clipped core is a single point: keep it once,
-            // with id 1 if the first end was beyond the margin.
-            if count == 1 {
-                break;
-            }
+            // The clipped core is a single point: one contact, not two.
+            break;
         }
         let (p, separation) = point(x);
         if separation <= margin {

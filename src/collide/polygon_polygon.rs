@@ -153,7 +153,7 @@ pub fn collide_polygons(
         }
     };
     let mut points = [LocalPoint::default(); MAX_MANIFOLD_POINTS];
-    let Some((normal, count)) = reference.contact(margin, &mut points) else {
+    let Some((normal, count)) = reference.contact(margin, reach, &mut points) else {
         return Manifold::EMPTY;
     };
     let local = points.get(..count).unwrap_or(&[]);
@@ -334,9 +334,12 @@ impl Reference<'_> {
 
     /// Fills `out` with the contact points (local to the reference polygon) and
     /// returns the local normal and the number of points, or `None` for no contact.
+    /// `reach` is `margin` plus both rounding radii: the greatest separation of
+    /// the cores that is a contact.
     fn contact(
         &self,
         margin: Scalar,
+        reach: Scalar,
         out: &mut [LocalPoint; MAX_MANIFOLD_POINTS],
     ) -> Option<(Vector2, usize)> {
         let ref_vertices = self.poly.vertices();
@@ -384,21 +387,11 @@ impl Reference<'_> {
         // with B's its first (`i1`).
         let base_id = self.pair_id(self.edge, k1);
         let (id2, id1) = if self.reference_is_b { (base_id | 1, base_id) } else { (base_id, base_id | 1) };
-        // Rounded polygons: the separation is the cores' minus both radii, and
-        // the incident surface lies its radius below the core point `p`. (With
-        // both radii 0 these are the sharp formulas, to the bit: adding an exact
-        // 0 changes nothing.)
-        let (radius, incident_rounding) = (self.radius, self.incident.rounding);
-        let rounded = radius != Scalar::ZERO;
+        // The cores' separation and the point midway between them; rounded
+        // polygons are adjusted once the points are chosen (`round_face`).
         let face_point = |p: Vector2, id: u16| {
-            let core = n_dir.dot(p - v1);
-            let (separation, offset) = if rounded {
-                let separation = core - radius;
-                (separation, incident_rounding + half(separation))
-            } else {
-                (core, half(core))
-            };
-            LocalPoint { point: p - n_dir.scale(offset), separation, id }
+            let separation = n_dir.dot(p - v1);
+            LocalPoint { point: p - n_dir.scale(half(separation)), separation, id }
         };
         if outside_low || outside_high {
             // The incident edge lies wholly beside the strip: not proven
@@ -411,7 +404,11 @@ impl Reference<'_> {
             }
             let (end2, end1) = (face_point(i2, id2), face_point(i1, id1));
             let deeper = if end2.separation <= end1.separation { end2 } else { end1 };
-            return single(n, deeper, margin, out);
+            let found = single(n, deeper, reach, out);
+            if let Some((_, count)) = found {
+                self.round_face(n_dir, count, out);
+            }
+            return found;
         }
         let p1 = clip_end(i1, i2, tau1, tau2, length);
         let p2 = clip_end(i2, i1, tau2, tau1, length);
@@ -423,7 +420,7 @@ impl Reference<'_> {
             // `p1 == p2` only when the strip and the edge meet at a single point
             // (corners touching exactly): one point, not two identical ones.
             let duplicate = k == 1 && count == 1 && p1 == p2;
-            if point.separation <= margin && !duplicate {
+            if point.separation <= reach && !duplicate {
                 if let Some(slot) = out.get_mut(count) {
                     *slot = point;
                     count += 1;
@@ -433,7 +430,27 @@ impl Reference<'_> {
         if count == 0 {
             None
         } else {
+            self.round_face(n_dir, count, out);
             Some((n, count))
+        }
+    }
+
+    /// Rounded polygons: turns the first `count` face points of the cores
+    /// (separation along the reference normal, point midway between the
+    /// cores) into those of the rounded surfaces: the separation less both
+    /// radii, the point midway between the reference surface and the incident
+    /// one (its radius inside the incident core's point). Sharp polygons are
+    /// left alone, so their contact keeps its bits and its cost.
+    fn round_face(&self, n_dir: Direction, count: usize, out: &mut [LocalPoint; MAX_MANIFOLD_POINTS]) {
+        if self.radius == Scalar::ZERO {
+            return;
+        }
+        for lp in out.iter_mut().take(count) {
+            // Back to the core point (an exact addition), then out again.
+            let core_point = lp.point + n_dir.scale(half(lp.separation));
+            let separation = lp.separation - self.radius;
+            lp.point = core_point - n_dir.scale(self.incident.rounding + half(separation));
+            lp.separation = separation;
         }
     }
 
@@ -848,13 +865,13 @@ mod tests {
             radius: ZERO,
         };
         let mut out = [LocalPoint::default(); MAX_MANIFOLD_POINTS];
-        assert_eq!(reference.contact(ZERO, &mut out), Some((Vector2::Y, 1)));
+        assert_eq!(reference.contact(ZERO, ZERO, &mut out), Some((Vector2::Y, 1)));
         // Both ends are 0.5 deep: the tie goes to the end listed first (end 0).
         assert_eq!(out[0].point, v("6", "0.75"));
         assert_eq!(out[0].separation, Scalar::lit("-0.5"));
         assert_eq!(out[0].id, 0x200);
         reference.separation = Scalar::lit("0.1");
-        assert_eq!(reference.contact(ONE, &mut out), None);
+        assert_eq!(reference.contact(ONE, ONE, &mut out), None);
     }
 
     #[test]
