@@ -557,13 +557,15 @@ fn a_snapshot_with_bad_body_options_is_rejected() {
     // the record count (4).
     let rec = 16 + 104 + 4;
     assert_eq!(good.len(), rec + PROPS_RECORD + 12 + 64 + 12 + 4 + 12 + 8, "one record of each");
-    let edits: [(usize, Vec<u8>, &str); 6] = [
-        (rec + 9, vec![2 | 0x08], "an unknown flag (0x08)"),
-        (rec + 9, vec![2 | 0x80], "an unknown flag"),
-        (rec + 58, s(-1.0).to_bits().to_le_bytes().to_vec(), "negative linear damping"),
-        (rec + 66, (MAX_BODY_DAMPING + Scalar::DELTA).to_bits().to_le_bytes().to_vec(), "angular damping"),
-        (rec + 74, s(16.5).to_bits().to_le_bytes().to_vec(), "gravity scale"),
-        (rec + 74, s(-17.0).to_bits().to_le_bytes().to_vec(), "negative gravity scale"),
+    let edits: [(usize, Vec<u8>, &str); 8] = [
+        (rec, vec![4], "an unknown shape kind"),
+        (rec + 9, vec![1], "a circle's shape padding not zero"),
+        (rec + 25, vec![2 | 0x08], "an unknown flag (0x08)"),
+        (rec + 25, vec![2 | 0x80], "an unknown flag"),
+        (rec + 74, s(-1.0).to_bits().to_le_bytes().to_vec(), "negative linear damping"),
+        (rec + 82, (MAX_BODY_DAMPING + Scalar::DELTA).to_bits().to_le_bytes().to_vec(), "angular damping"),
+        (rec + 90, s(16.5).to_bits().to_le_bytes().to_vec(), "gravity scale"),
+        (rec + 90, s(-17.0).to_bits().to_le_bytes().to_vec(), "negative gravity scale"),
     ];
     let mut w = world();
     let before = w.state_hash();
@@ -576,9 +578,9 @@ fn a_snapshot_with_bad_body_options_is_rejected() {
     }
     // A valid edit: the fixed-rotation bit and a filter restore as written.
     let mut snap = good.clone();
-    snap[rec + 9] |= 0x40;
-    snap[rec + 82..rec + 90].copy_from_slice(&0x8u64.to_le_bytes());
-    snap[rec + 98..rec + 102].copy_from_slice(&(-2i32).to_le_bytes());
+    snap[rec + 25] |= 0x40;
+    snap[rec + 98..rec + 106].copy_from_slice(&0x8u64.to_le_bytes());
+    snap[rec + 114..rec + 118].copy_from_slice(&(-2i32).to_le_bytes());
     reseal(&mut snap);
     w.restore(&snap).expect("valid");
     let (_, b) = w.bodies().next().expect("one body");

@@ -53,11 +53,8 @@ pub(crate) enum Swept<'a> {
     /// A convex polygon about the body's position (rounded or not).
     Polygon(&'a PolygonPath),
     /// A capsule (body-local centres).
-    // Constructed by the dispatch in `continuous` once it sweeps capsules.
-    #[allow(dead_code)]
     Capsule(&'a Capsule),
     /// A segment (body-local ends).
-    #[allow(dead_code)]
     Segment(&'a Segment),
 }
 
