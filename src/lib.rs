@@ -145,7 +145,8 @@
 //! | speed | ≤ 2,048 m/s configurable, default 400 ([`WorldDef::max_linear_speed`]) | squared speeds exact |
 //! | spin | ≤ 256 rad/s, default 200, and ≤ π/4 per step | angular momentum in range |
 //! | time step | [2^-16, 0.25] s ([`MIN_TIME_STEP`], [`MAX_TIME_STEP`]) | bounded motion per step; 1/sub-step ≤ 2^20 per second |
-//! | polygon | ≤ 8 vertices ([`geometry::MAX_POLYGON_VERTICES`]) | fixed-size, no allocation |
+//! | polygon | ≤ 8 vertices ([`geometry::MAX_POLYGON_VERTICES`]); a rounding radius the core keeps a positive area with | fixed-size, no allocation |
+//! | capsule, segment | half the length plus the radius ≤ 128 m (a segment ≤ 256 m long, ≥ 2^-20 m) | re-centred on the body, within the body radius |
 //!
 //! # Coming from Box2D or Chipmunk
 //! | Box2D v3 | Chipmunk | arphysics |

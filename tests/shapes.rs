@@ -401,3 +401,25 @@ fn a_capsule_cast_stops_at_the_nearest_wall() {
     let hit = w.shape_cast(QueryShape::Capsule(c), xf, v(20.0, 0.0), QueryFilter::default().exclude(near));
     assert!((f(hit.expect("cast").expect("hit").fraction) - 8.1 / 20.0).abs() < 1e-4);
 }
+
+// ---- continuous collision ------------------------------------------------------------
+
+/// A capsule and a ball shot at 300 m/s at a thin ground segment (5 m a
+/// step, far more than their size) stop on it: continuous collision sweeps
+/// every shape.
+#[test]
+fn fast_capsules_and_balls_do_not_tunnel_through_a_segment() {
+    let mut w = world();
+    ground(&mut w);
+    let k = w
+        .add_body(
+            BodyDef::capsule(capsule(-0.4, 0.0, 0.4, 0.0, 0.1)).position(v(-3.0, 40.0)).linear_velocity(v(0.0, -300.0)),
+        )
+        .expect("capsule");
+    let b = w.add_body(BodyDef::circle(s(0.1)).position(v(3.0, 40.0)).linear_velocity(v(0.0, -300.0))).expect("b");
+    step(&mut w, 120);
+    for h in [k, b] {
+        let y = f(w.body(h).expect("body").position().y);
+        assert!(y > 0.0 && y < 0.2, "{h:?} ended at y = {y}");
+    }
+}
