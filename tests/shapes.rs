@@ -413,10 +413,14 @@ fn fast_capsules_and_balls_do_not_tunnel_through_a_segment() {
     ground(&mut w);
     let k = w
         .add_body(
-            BodyDef::capsule(capsule(-0.4, 0.0, 0.4, 0.0, 0.1)).position(v(-3.0, 40.0)).linear_velocity(v(0.0, -300.0)),
+            BodyDef::capsule(capsule(-0.4, 0.0, 0.4, 0.0, 0.1))
+                .position(v(-3.0, 40.0))
+                .linear_velocity(v(0.0, -300.0)),
         )
         .expect("capsule");
-    let b = w.add_body(BodyDef::circle(s(0.1)).position(v(3.0, 40.0)).linear_velocity(v(0.0, -300.0))).expect("b");
+    let b = w
+        .add_body(BodyDef::circle(s(0.1)).position(v(3.0, 40.0)).linear_velocity(v(0.0, -300.0)))
+        .expect("b");
     step(&mut w, 120);
     for h in [k, b] {
         let y = f(w.body(h).expect("body").position().y);

@@ -242,7 +242,11 @@ pub fn shapes() -> Result<Outcome, SceneError> {
     let rod = Segment::new(v(-1, 0), v(1, 0))?;
     let mut capsules = [BodyHandle::from_parts(0, 0); 6];
     for i in 0..18 {
-        let at = if i == 5 { v(12, 12) } else { Vector2::new(q(-12 + (i % 6) * 4, 1) + q(i, 7), q(3 + (i / 6) * 3, 1)) };
+        let at = if i == 5 {
+            v(12, 12)
+        } else {
+            Vector2::new(q(-12 + (i % 6) * 4, 1) + q(i, 7), q(3 + (i / 6) * 3, 1))
+        };
         let def = match i % 6 {
             0 => BodyDef::capsule(lying),
             1 => BodyDef::capsule(upright).angle(q(1, 3)),
