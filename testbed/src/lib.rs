@@ -383,19 +383,25 @@ impl Testbed {
         let before = self.world().state_hash();
         let from = first.frame;
         let frames = self.frame - from;
-        // The demo scenes' spawners hold a random generator outside the world:
-        // rebuild the scene and run its spawner up to `from` (adding bodies that
-        // the restore below then replaces), then take the real world back.
+        // The demo scenes' spawners hold a random generator and path handles
+        // outside the world: rebuild the scene, run its spawner up to `from`
+        // (adding bodies that the restore then replaces) and restore the
+        // snapshot into that world. Its handles carry the new world's tag: the
+        // recorded drags are re-tagged (same slots and generations).
         let scene = self.scenes[self.scene];
-        let (mut fresh, _) = build(&scene, self.substeps)?;
+        let (mut fresh, spawn_box) = build(&scene, self.substeps)?;
         for f in 0..from {
             // Errors here (a full world) are those of the real run; the
             // generator advanced all the same.
             let _ = fresh.before_step(f);
         }
-        std::mem::swap(fresh.world_mut(), self.running.world_mut());
+        fresh.world_mut().restore(&self.ring[0].snapshot)?;
         self.running = fresh;
-        self.running.world_mut().restore(&self.ring[0].snapshot)?;
+        self.spawn_box = spawn_box;
+        let w = self.running.world();
+        let retag = |d: &mut Drag| d.body = w.handle_from_parts(d.body.index(), d.body.generation());
+        self.ring.iter_mut().filter_map(|r| r.drag.as_mut()).for_each(retag);
+        self.drag.as_mut().map(retag);
         for (k, rec) in self.ring.iter().enumerate() {
             if k > 0 {
                 for s in &rec.spawns {
