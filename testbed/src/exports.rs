@@ -28,7 +28,8 @@ struct State {
 }
 
 /// One page, one thread: the lock never waits. (A `Mutex` keeps this safe Rust.)
-static STATE: Mutex<State> = Mutex::new(State { testbed: None, error: String::new(), text: String::new(), last_rollback: None });
+static STATE: Mutex<State> =
+    Mutex::new(State { testbed: None, error: String::new(), text: String::new(), last_rollback: None });
 
 fn with<R>(f: impl FnOnce(&mut State) -> R) -> R {
     // A poisoned lock cannot happen (panics abort); take the state either way.

@@ -195,9 +195,9 @@ impl Testbed {
     /// [`E_NO_SCENE`], [`E_BAD_INPUT`] or what building the scene fails with.
     pub fn new(index: usize, substeps: u32) -> Result<Self, Fail> {
         let scenes = scenes::all();
-        let scene = scenes
-            .get(index)
-            .ok_or_else(|| Fail::new(E_NO_SCENE, format!("no scene number {index} ({} scenes)", scenes.len())))?;
+        let scene = scenes.get(index).ok_or_else(|| {
+            Fail::new(E_NO_SCENE, format!("no scene number {index} ({} scenes)", scenes.len()))
+        })?;
         let (running, spawn_box) = build(scene, substeps)?;
         let per_frame = running.world().snapshot_len().max(1) * 3 / 2;
         let ring_frames = (RING_BUDGET / per_frame).clamp(1, RING_FRAMES);
@@ -536,7 +536,8 @@ fn step_frame(running: &mut scenes::Running, frame: u32, drag: Option<Drag>) -> 
             let held = b.transform().apply(d.anchor);
             let pull = d.target - held;
             let len = pull.length();
-            let target = if len > DRAG_MAX_STRETCH { held + pull * (DRAG_MAX_STRETCH / len) } else { d.target };
+            let target =
+                if len > DRAG_MAX_STRETCH { held + pull * (DRAG_MAX_STRETCH / len) } else { d.target };
             let m = b.mass();
             let k = (m * DRAG_K_PER_KG).min(arphysics::limits::MAX_STIFFNESS);
             let c = (m * DRAG_C_PER_KG).min(arphysics::limits::MAX_DAMPING);
