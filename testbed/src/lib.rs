@@ -516,21 +516,26 @@ fn apply_spawn(w: &mut World<'static>, spawn_box: PathHandle, s: Spawn) -> Resul
     w.add_body(def.position(s.at))
 }
 
-/// The drag spring's stiffness per kilogram (ω² for 3 Hz, rounded), its
-/// damping per kilogram (2·ζ·ω, ζ = 0.7) and the longest stretch it pulls
-/// with (so the force is at most about 1,600 N/kg · 1.5 m… a soft, bounded pull).
+/// The drag: a zero-length spring from the held point to the mouse of
+/// stiffness ω²·m (ω = 2π·3 Hz, so ω² ≈ 355 /s²), and while held the body's
+/// linear damping raised to 2·ζ·ω = 26.4 /s (ζ = 0.7) and its angular damping
+/// to 4 /s. A damped spring damps only along its axis, so a zero-length one
+/// alone lets the body orbit the mouse; damping the body (relative to the
+/// world, as a mouse joint does) settles it. The stretch the spring pulls with
+/// is at most 1.5 m, which bounds the force at about 530 N per kilogram.
 const DRAG_K_PER_KG: i32 = 355;
-const DRAG_C_PER_KG: Scalar = Scalar::lit("26.4");
+const DRAG_LINEAR_DAMPING: Scalar = Scalar::lit("26.4");
+const DRAG_ANGULAR_DAMPING: Scalar = Scalar::lit("4");
 const DRAG_MAX_STRETCH: Scalar = Scalar::lit("1.5");
 
-/// One frame: the scene's additions, the drag spring (a damped spring from the
-/// held point to the mouse, added for this step only: the engine has no mouse
-/// joint yet), the step. Returns the scene's note if its spawner failed (the
-/// step still happens).
+/// One frame: the scene's additions, the drag (added for this step only: the
+/// engine has no mouse joint yet), the step. Returns the scene's note if its
+/// spawner failed (the step still happens).
 fn step_frame(running: &mut scenes::Running, frame: u32, drag: Option<Drag>) -> Result<Option<String>, Fail> {
     let note = running.before_step(frame).err().map(|e| format!("scene spawner: {e}"));
     let w = running.world_mut();
     let mut joint = None;
+    let mut restore = None;
     if let Some(d) = drag {
         if let Ok(b) = w.body(d.body) {
             let held = b.transform().apply(d.anchor);
@@ -538,18 +543,28 @@ fn step_frame(running: &mut scenes::Running, frame: u32, drag: Option<Drag>) -> 
             let len = pull.length();
             let target =
                 if len > DRAG_MAX_STRETCH { held + pull * (DRAG_MAX_STRETCH / len) } else { d.target };
-            let m = b.mass();
-            let k = (m * DRAG_K_PER_KG).min(arphysics::limits::MAX_STIFFNESS);
-            let c = (m * DRAG_C_PER_KG).min(arphysics::limits::MAX_DAMPING);
-            let kind = JointKind::DampedSpring { stiffness: k, damping: c, rest_length: Scalar::ZERO };
-            // A body held is awake and pulled; a failure (a full joint store) only
-            // means no pull this frame.
+            let k = (b.mass() * DRAG_K_PER_KG).min(arphysics::limits::MAX_STIFFNESS);
+            let damping = (b.linear_damping(), b.angular_damping());
+            let kind =
+                JointKind::DampedSpring { stiffness: k, damping: Scalar::ZERO, rest_length: Scalar::ZERO };
+            // A failure (a full joint store) only means no pull this frame.
             joint = w.add_joint(JointDef::to_world(d.body, d.anchor, target, kind)).ok();
+            if joint.is_some()
+                && w.set_linear_damping(d.body, damping.0.max(DRAG_LINEAR_DAMPING)).is_ok()
+                && w.set_angular_damping(d.body, damping.1.max(DRAG_ANGULAR_DAMPING)).is_ok()
+            {
+                restore = Some(damping);
+            }
         }
     }
     let stepped = w.step(dt());
     if let Some(j) = joint {
         let _ = w.remove_joint(j);
+    }
+    if let (Some(d), Some((linear, angular))) = (drag, restore) {
+        // The values were valid before: these cannot fail.
+        let _ = w.set_linear_damping(d.body, linear);
+        let _ = w.set_angular_damping(d.body, angular);
     }
     stepped?;
     Ok(note)
