@@ -119,7 +119,7 @@ function updatePanel() {
   $('bodies').textContent = call('tb_body_count');
   $('contacts').textContent = call('tb_contact_count');
   $('joints').textContent = call('tb_joint_count');
-  $('hash').textContent = stateHash();
+  $('hash').textContent = stateHash() + ' @ frame ' + frame;
   const n = $('native');
   n.className = '';
   if (!native) {
