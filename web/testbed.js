@@ -120,6 +120,8 @@ function updatePanel() {
   $('contacts').textContent = call('tb_contact_count');
   $('joints').textContent = call('tb_joint_count');
   $('hash').textContent = stateHash() + ' @ frame ' + frame;
+  const noteLen = call('tb_scene_note');
+  if (noteLen > 0 && !$('message').textContent) message(text(call('tb_text_ptr'), noteLen));
   const n = $('native');
   n.className = '';
   if (!native) {
