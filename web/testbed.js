@@ -205,6 +205,11 @@ function draw() {
       ctx.save(); ctx.lineWidth = 3 / f.s; ctx.strokeStyle = '#555';
       ctx.beginPath(); ctx.moveTo(d[o + 8], d[o + 9]); ctx.lineTo(d[o + 10], d[o + 11]); ctx.stroke();
       ctx.restore();
+    } else if (kind === 5) {
+      ctx.save(); ctx.lineWidth = 1.5 / f.s; ctx.strokeStyle = '#2e7d32';
+      ctx.beginPath(); ctx.moveTo(d[o + 8], d[o + 9]); ctx.lineTo(d[o + 10], d[o + 11]); ctx.stroke();
+      ctx.fillStyle = '#2e7d32'; ctx.fillRect(d[o + 8] - 2 / f.s, d[o + 9] - 2 / f.s, 4 / f.s, 4 / f.s);
+      ctx.restore();
     } else if (kind === 4) {
       ctx.save(); ctx.lineWidth = 2 / f.s; ctx.strokeStyle = '#e8505b'; ctx.setLineDash([6 / f.s, 4 / f.s]);
       ctx.beginPath(); ctx.moveTo(d[o + 8], d[o + 9]); ctx.lineTo(d[o + 10], d[o + 11]); ctx.stroke();

@@ -43,8 +43,10 @@ pub fn dt() -> Scalar {
 /// Sub-steps for the scenes built next (a world setting: see [`scene_world`]).
 static SUBSTEPS: AtomicU32 = AtomicU32::new(4);
 
-/// Floats per body in the draw list: kind, flags, x, y, angle, radius, point
-/// count, unused, then up to 8 points (x, y) in world coordinates.
+/// Floats per record in the draw list: kind, flags, x, y, angle, radius, point
+/// count, unused, then up to 8 points (x, y) in world coordinates. Kinds: 0
+/// circle, 1 polygon (radius: its rounding), 2 capsule (the two centres), 3
+/// segment, 4 the drag spring (held point, mouse), 5 a joint (its anchors).
 pub const DRAW_STRIDE: usize = 24;
 
 /// A scene's world: its bounds and capacities, with the testbed's sub-step
@@ -491,6 +493,25 @@ impl Testbed {
                     points(&mut [s.point1(), s.point2()].into_iter(), &mut rec);
                 }
             }
+            out.extend_from_slice(&rec);
+        }
+        // Joints, kind 5: a line between the anchors (world points).
+        for (_, j) in w.joints() {
+            let def = j.def();
+            let Ok(a) = w.body(def.body_a) else { continue };
+            let pa = a.transform().apply(def.anchor_a);
+            let pb = match def.body_b {
+                Some(h) => match w.body(h) {
+                    Ok(b) => b.transform().apply(def.anchor_b),
+                    Err(_) => continue,
+                },
+                None => def.anchor_b,
+            };
+            let mut rec = [0f32; DRAW_STRIDE];
+            rec[0] = 5.0;
+            rec[6] = 2.0;
+            let ((ax, ay), (bx, by)) = (pa.to_f32(), pb.to_f32());
+            rec[8..12].copy_from_slice(&[ax, ay, bx, by]);
             out.extend_from_slice(&rec);
         }
         // The drag spring, as a last record of kind 4: from the held point to the mouse.
