@@ -1,0 +1,592 @@
+//! The arphysics testbed: the engine's scenes, stepped, drawn and played with
+//! in a browser (built for `wasm32-unknown-unknown`, see `exports`), and the
+//! same code natively (`src/bin/native_hashes.rs`) to print the hashes the page
+//! must reproduce.
+//!
+//! [`Testbed`] is the whole testbed in safe Rust: load a scene, step it, spawn
+//! bodies, drag one, roll back 60 frames and re-simulate. It never panics on
+//! input: every operation returns a [`Fail`] (an error code and a message).
+//! Floats appear only at the edge (mouse coordinates in, drawing out); inputs
+//! are turned into `Scalar`s once, when they arrive, and recorded as such, so a
+//! replay uses the same bits.
+
+#![deny(unsafe_code)]
+#![deny(unsafe_op_in_unsafe_fn)]
+
+pub mod exports;
+pub mod scenes;
+
+use std::collections::VecDeque;
+use std::sync::atomic::{AtomicU32, Ordering};
+
+use arphysics::{
+    BodyDef, BodyHandle, Capacities, Error, JointDef, JointKind, PathHandle, PolygonPath, QueryFilter, Rect,
+    Scalar, Shape, Vector2, World, WorldDef,
+};
+
+/// Bodies a scene's world has room for beyond what the scene needs (spawned by
+/// clicks); the spawn after those fails with "world full".
+pub const SPAWN_ROOM: usize = 64;
+
+/// Frames of snapshots kept for rollback.
+pub const RING_FRAMES: usize = 60;
+
+/// Bytes of snapshots the rollback ring may hold; a scene whose snapshots are
+/// larger keeps fewer frames (joint_grid).
+pub const RING_BUDGET: usize = 96 << 20;
+
+/// One frame's time step, 1/60 s (as the demo computes it).
+pub fn dt() -> Scalar {
+    Scalar::ONE / 60
+}
+
+/// Sub-steps for the scenes built next (a world setting: see [`scene_world`]).
+static SUBSTEPS: AtomicU32 = AtomicU32::new(4);
+
+/// Floats per record in the draw list: kind, flags, x, y, angle, radius, point
+/// count, unused, then up to 8 points (x, y) in world coordinates. Kinds: 0
+/// circle, 1 polygon (radius: its rounding), 2 capsule (the two centres), 3
+/// segment, 4 the drag spring (held point, mouse), 5 a joint (its anchors).
+pub const DRAW_STRIDE: usize = 24;
+
+/// A scene's world: its bounds and capacities, with the testbed's sub-step
+/// count, room for [`SPAWN_ROOM`] more bodies and one more joint (the drag
+/// spring). Called by every scene builder (build.rs routes the demo's to it).
+///
+/// # Errors
+/// What [`World::with_capacities`] fails with.
+pub fn scene_world(bounds: Rect, mut capacities: Capacities) -> Result<World<'static>, Error> {
+    let mut def = WorldDef::with_bounds(bounds);
+    def.substeps = SUBSTEPS.load(Ordering::Relaxed);
+    capacities.bodies += SPAWN_ROOM;
+    capacities.contacts += SPAWN_ROOM * 4;
+    capacities.joints += 1;
+    World::with_capacities(def, capacities)
+}
+
+/// Why an operation failed: a code the page can switch on and a message it shows.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Fail {
+    /// Negative: see the `E_*` constants.
+    pub code: i32,
+    /// What happened, for people.
+    pub message: String,
+}
+
+/// No scene of that index or name.
+pub const E_NO_SCENE: i32 = -1;
+/// No scene is loaded.
+pub const E_NOT_LOADED: i32 = -2;
+/// The engine returned an error (the message names it).
+pub const E_ENGINE: i32 = -3;
+/// A spawn (or drag target) outside the world's bounds.
+pub const E_OUTSIDE: i32 = -4;
+/// The world is full.
+pub const E_FULL: i32 = -5;
+/// Nothing draggable under the point (nothing, or a static body).
+pub const E_NOT_DRAGGABLE: i32 = -6;
+/// Rollback is not possible yet (no frames recorded).
+pub const E_NO_HISTORY: i32 = -7;
+/// Rollback re-simulated to a different hash (a determinism bug).
+pub const E_MISMATCH: i32 = -8;
+/// A parameter out of range (sub-steps, a NaN coordinate, a spawn kind).
+pub const E_BAD_INPUT: i32 = -9;
+
+impl Fail {
+    fn new(code: i32, message: impl Into<String>) -> Self {
+        Self { code, message: message.into() }
+    }
+}
+
+impl From<Error> for Fail {
+    fn from(e: Error) -> Self {
+        let code = match e {
+            Error::CapacityFull { .. } => E_FULL,
+            Error::OutsideBounds => E_OUTSIDE,
+            _ => E_ENGINE,
+        };
+        Self::new(code, format!("engine: {e}"))
+    }
+}
+
+/// A drag in progress: a body, the point of it held (body frame) and where the
+/// mouse is (world).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Drag {
+    /// The body held.
+    pub body: BodyHandle,
+    /// The point held, in the body's frame.
+    pub anchor: Vector2,
+    /// The mouse, in the world.
+    pub target: Vector2,
+}
+
+/// A body spawned by a click.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Spawn {
+    /// A ball (else a box).
+    pub ball: bool,
+    /// Where.
+    pub at: Vector2,
+}
+
+/// A frame of the rollback ring: the state before the frame, the spawns made
+/// just before it (already in that state) and the drag during it.
+struct Record {
+    frame: u32,
+    snapshot: Vec<u8>,
+    spawns: Vec<Spawn>,
+    drag: Option<Drag>,
+}
+
+/// The result of a rollback.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Rollback {
+    /// Frames rewound and re-simulated.
+    pub frames: u32,
+    /// The hash before.
+    pub before: u64,
+    /// The hash after re-simulating.
+    pub after: u64,
+}
+
+/// The testbed: one scene at a time.
+pub struct Testbed {
+    scenes: Vec<scenes::Scene>,
+    scene: usize,
+    substeps: u32,
+    running: scenes::Running,
+    spawn_box: PathHandle,
+    frame: u32,
+    /// Spawns since the last frame (already in the world).
+    spawns: Vec<Spawn>,
+    drag: Option<Drag>,
+    ring: VecDeque<Record>,
+    ring_frames: usize,
+    /// Whether the user changed the world since the scene was loaded (then no
+    /// native hash applies).
+    interacted: bool,
+    /// The last error a scene's own spawner reported (a world the user filled).
+    pub scene_note: Option<String>,
+    draw: Vec<f32>,
+}
+
+/// The side of a spawned box, m, and a ball's radius.
+const SPAWN_BOX: Scalar = Scalar::lit("0.8");
+const SPAWN_BALL: Scalar = Scalar::lit("0.4");
+
+fn build(scene: &scenes::Scene, substeps: u32) -> Result<(scenes::Running, PathHandle), Fail> {
+    if substeps == 0 || substeps > arphysics::limits::MAX_SUBSTEPS {
+        return Err(Fail::new(
+            E_BAD_INPUT,
+            format!("sub-steps must be 1 to {}", arphysics::limits::MAX_SUBSTEPS),
+        ));
+    }
+    SUBSTEPS.store(substeps, Ordering::Relaxed);
+    let mut running = scene.build()?;
+    // The path of spawned boxes is part of the scene from the start: restore
+    // requires the same paths, so it cannot be added later.
+    let spawn_box = running.world_mut().add_path(PolygonPath::rectangle(SPAWN_BOX, SPAWN_BOX)?)?;
+    Ok((running, spawn_box))
+}
+
+impl Testbed {
+    /// The testbed with scene `index` loaded at `substeps` sub-steps.
+    ///
+    /// # Errors
+    /// [`E_NO_SCENE`], [`E_BAD_INPUT`] or what building the scene fails with.
+    pub fn new(index: usize, substeps: u32) -> Result<Self, Fail> {
+        let scenes = scenes::all();
+        let scene = scenes.get(index).ok_or_else(|| {
+            Fail::new(E_NO_SCENE, format!("no scene number {index} ({} scenes)", scenes.len()))
+        })?;
+        let (running, spawn_box) = build(scene, substeps)?;
+        let per_frame = running.world().snapshot_len().max(1) * 3 / 2;
+        let ring_frames = (RING_BUDGET / per_frame).clamp(1, RING_FRAMES);
+        Ok(Self {
+            scenes,
+            scene: index,
+            substeps,
+            running,
+            spawn_box,
+            frame: 0,
+            spawns: Vec::new(),
+            drag: None,
+            ring: VecDeque::new(),
+            ring_frames,
+            interacted: false,
+            scene_note: None,
+            draw: Vec::new(),
+        })
+    }
+
+    /// The scene by name.
+    pub fn scene_index(name: &str) -> Option<usize> {
+        scenes::all().iter().position(|s| s.name == name)
+    }
+
+    /// The scenes.
+    pub fn scenes(&self) -> &[scenes::Scene] {
+        &self.scenes
+    }
+
+    /// The scene loaded.
+    pub fn scene(&self) -> usize {
+        self.scene
+    }
+
+    /// Sub-steps per step.
+    pub fn substeps(&self) -> u32 {
+        self.substeps
+    }
+
+    /// The world.
+    pub fn world(&self) -> &World<'static> {
+        self.running.world()
+    }
+
+    /// Frames stepped since the scene was loaded.
+    pub fn frame(&self) -> u32 {
+        self.frame
+    }
+
+    /// Whether the user changed the world (spawn, drag) since loading.
+    pub fn interacted(&self) -> bool {
+        self.interacted
+    }
+
+    /// Frames the rollback ring holds at most for this scene.
+    pub fn ring_frames(&self) -> usize {
+        self.ring_frames
+    }
+
+    /// Frames the rollback ring holds now.
+    pub fn history(&self) -> usize {
+        self.ring.len()
+    }
+
+    /// The drag in progress.
+    pub fn drag(&self) -> Option<Drag> {
+        self.drag
+    }
+
+    /// Touching contact pairs.
+    pub fn contact_count(&self) -> usize {
+        self.world().arbiters().filter(|a| a.is_touching()).count()
+    }
+
+    /// Steps one frame: records it in the rollback ring, lets the scene add
+    /// what is due, steps with the drag spring if a body is held.
+    ///
+    /// # Errors
+    /// What stepping fails with (the world is then as the engine left it).
+    pub fn step(&mut self) -> Result<(), Fail> {
+        let spawns = std::mem::take(&mut self.spawns);
+        let drag = self.drag;
+        // The ring: reuse the oldest record's buffer.
+        let mut rec = if self.ring.len() >= self.ring_frames {
+            self.ring.pop_front().map(|mut r| {
+                r.spawns.clear();
+                r
+            })
+        } else {
+            None
+        }
+        .unwrap_or(Record { frame: 0, snapshot: Vec::new(), spawns: Vec::new(), drag: None });
+        let world = self.running.world();
+        rec.snapshot.resize(world.snapshot_len(), 0);
+        world.snapshot(&mut rec.snapshot)?;
+        rec.frame = self.frame;
+        rec.spawns = spawns;
+        rec.drag = drag;
+        self.ring.push_back(rec);
+        let note = step_frame(&mut self.running, self.frame, drag)?;
+        if note.is_some() {
+            self.scene_note = note;
+        }
+        self.frame += 1;
+        Ok(())
+    }
+
+    /// Spawns a box (or a ball) at `(x, y)` m, before the next frame.
+    ///
+    /// # Errors
+    /// [`E_BAD_INPUT`] for a non-finite point, [`E_OUTSIDE`] outside the
+    /// bounds, [`E_FULL`] when the world is full.
+    pub fn spawn(&mut self, ball: bool, x: f64, y: f64) -> Result<(), Fail> {
+        let at = Vector2::checked_from_f64(x, y).ok_or_else(|| Fail::new(E_BAD_INPUT, "not a point"))?;
+        let b = self.world().bounds();
+        let r = SPAWN_BOX; // covers both shapes' extents
+        if at.x - r < b.min.x || at.x + r > b.max.x || at.y - r < b.min.y || at.y + r > b.max.y {
+            return Err(Fail::new(E_OUTSIDE, "spawn outside the world's bounds"));
+        }
+        let s = Spawn { ball, at };
+        apply_spawn(self.running.world_mut(), self.spawn_box, s).map_err(|e| match e {
+            Error::CapacityFull { what } => Fail::new(E_FULL, format!("the world is full ({what})")),
+            e => Fail::from(e),
+        })?;
+        self.spawns.push(s);
+        self.interacted = true;
+        Ok(())
+    }
+
+    /// Takes hold of the dynamic body under `(x, y)`.
+    ///
+    /// # Errors
+    /// [`E_NOT_DRAGGABLE`] when no dynamic body is there (a static one is
+    /// named as such), [`E_BAD_INPUT`] for a non-finite point.
+    pub fn drag_begin(&mut self, x: f64, y: f64) -> Result<(), Fail> {
+        let p = Vector2::checked_from_f64(x, y).ok_or_else(|| Fail::new(E_BAD_INPUT, "not a point"))?;
+        let w = self.world();
+        let mut found = [None::<BodyHandle>; 1].map(|_| BodyHandle::default());
+        let n = w.query_point(p, QueryFilter::new().skip_static(true).skip_sensors(true), &mut found);
+        let body = if n > 0 { Some(found[0]) } else { None };
+        let Some(body) = body.filter(|h| w.body(*h).is_ok_and(|b| b.is_dynamic())) else {
+            let any = w.query_point(p, QueryFilter::new(), &mut found);
+            return Err(Fail::new(
+                E_NOT_DRAGGABLE,
+                if any > 0 { "that body is static: it cannot be dragged" } else { "no body there to drag" },
+            ));
+        };
+        let anchor = w.body(body)?.transform().apply_inv(p);
+        self.drag = Some(Drag { body, anchor, target: p });
+        self.interacted = true;
+        Ok(())
+    }
+
+    /// Moves the held point's target to `(x, y)`.
+    ///
+    /// # Errors
+    /// [`E_BAD_INPUT`] for a non-finite point; nothing held is not an error.
+    pub fn drag_move(&mut self, x: f64, y: f64) -> Result<(), Fail> {
+        let p = Vector2::checked_from_f64(x, y).ok_or_else(|| Fail::new(E_BAD_INPUT, "not a point"))?;
+        if let Some(d) = &mut self.drag {
+            d.target = p;
+        }
+        Ok(())
+    }
+
+    /// Lets go.
+    pub fn drag_end(&mut self) {
+        self.drag = None;
+    }
+
+    /// Rewinds as many frames as the ring holds (60, fewer for a huge scene or
+    /// early in a run), restores the snapshot and re-simulates them with the
+    /// same inputs; the hash must come back the same.
+    ///
+    /// # Errors
+    /// [`E_NO_HISTORY`] with nothing recorded; [`E_MISMATCH`] if the hash
+    /// differs (the world is then the re-simulated one); engine errors.
+    pub fn rollback(&mut self) -> Result<Rollback, Fail> {
+        let Some(first) = self.ring.front() else {
+            return Err(Fail::new(E_NO_HISTORY, "nothing to roll back yet: step first"));
+        };
+        let before = self.world().state_hash();
+        let from = first.frame;
+        let frames = self.frame - from;
+        // The demo scenes' spawners hold a random generator and path handles
+        // outside the world: rebuild the scene, run its spawner up to `from`
+        // (adding bodies that the restore then replaces) and restore the
+        // snapshot into that world. Its handles carry the new world's tag: the
+        // recorded drags are re-tagged (same slots and generations).
+        let scene = self.scenes[self.scene];
+        let (mut fresh, spawn_box) = build(&scene, self.substeps)?;
+        for f in 0..from {
+            // Errors here (a full world) are those of the real run; the
+            // generator advanced all the same.
+            let _ = fresh.before_step(f);
+        }
+        fresh.world_mut().restore(&self.ring[0].snapshot)?;
+        self.running = fresh;
+        self.spawn_box = spawn_box;
+        let w = self.running.world();
+        let retag = |d: &mut Drag| d.body = w.handle_from_parts(d.body.index(), d.body.generation());
+        self.ring.iter_mut().filter_map(|r| r.drag.as_mut()).for_each(retag);
+        self.drag.as_mut().map(retag);
+        for (k, rec) in self.ring.iter().enumerate() {
+            if k > 0 {
+                for s in &rec.spawns {
+                    apply_spawn(self.running.world_mut(), self.spawn_box, *s)?;
+                }
+            }
+            step_frame(&mut self.running, rec.frame, rec.drag)?;
+        }
+        for s in &self.spawns {
+            apply_spawn(self.running.world_mut(), self.spawn_box, *s)?;
+        }
+        let after = self.world().state_hash();
+        let r = Rollback { frames, before, after };
+        if before == after {
+            Ok(r)
+        } else {
+            Err(Fail::new(
+                E_MISMATCH,
+                format!("rollback of {frames} frames re-simulated to {after:016x}, not {before:016x}"),
+            ))
+        }
+    }
+
+    /// The draw list as [`Testbed::draw_list`] last filled it.
+    pub fn last_draw_list(&self) -> &[f32] {
+        &self.draw
+    }
+
+    /// Fills the draw list (see [`DRAW_STRIDE`]) and returns it.
+    pub fn draw_list(&mut self) -> &[f32] {
+        let mut out = std::mem::take(&mut self.draw);
+        out.clear();
+        let held = self.drag.map(|d| d.body);
+        let w = self.running.world();
+        for (h, b) in w.bodies() {
+            let xf = b.transform();
+            let (x, y) = b.position().to_f32();
+            let mut flags = 0u32;
+            if b.is_static() {
+                flags |= 1;
+            } else if !b.is_dynamic() {
+                flags |= 2;
+            }
+            if held == Some(h) {
+                flags |= 4;
+            }
+            if b.is_sensor() {
+                flags |= 8;
+            }
+            if b.is_out_of_bounds() {
+                flags |= 16;
+            }
+            let mut rec = [0f32; DRAW_STRIDE];
+            rec[1] = flags as f32;
+            rec[2] = x;
+            rec[3] = y;
+            rec[4] = b.angle().to_num::<f32>();
+            let points = |pts: &mut dyn Iterator<Item = Vector2>, rec: &mut [f32; DRAW_STRIDE]| {
+                let mut n = 0;
+                for (k, p) in pts.take(8).enumerate() {
+                    let (px, py) = xf.apply(p).to_f32();
+                    rec[8 + 2 * k] = px;
+                    rec[9 + 2 * k] = py;
+                    n = k + 1;
+                }
+                rec[6] = n as f32;
+            };
+            match b.shape() {
+                Shape::Circle { radius } => {
+                    rec[0] = 0.0;
+                    rec[5] = radius.to_num::<f32>();
+                }
+                Shape::Polygon(p) => {
+                    rec[0] = 1.0;
+                    if let Ok(path) = w.path(p) {
+                        rec[5] = path.rounding().to_num::<f32>();
+                        points(&mut path.vertices().iter().copied(), &mut rec);
+                    }
+                }
+                Shape::Capsule(c) => {
+                    rec[0] = 2.0;
+                    rec[5] = c.radius().to_num::<f32>();
+                    points(&mut [c.center1(), c.center2()].into_iter(), &mut rec);
+                }
+                Shape::Segment(s) => {
+                    rec[0] = 3.0;
+                    points(&mut [s.point1(), s.point2()].into_iter(), &mut rec);
+                }
+            }
+            out.extend_from_slice(&rec);
+        }
+        // Joints, kind 5: a line between the anchors (world points).
+        for (_, j) in w.joints() {
+            let def = j.def();
+            let Ok(a) = w.body(def.body_a) else { continue };
+            let pa = a.transform().apply(def.anchor_a);
+            let pb = match def.body_b {
+                Some(h) => match w.body(h) {
+                    Ok(b) => b.transform().apply(def.anchor_b),
+                    Err(_) => continue,
+                },
+                None => def.anchor_b,
+            };
+            let mut rec = [0f32; DRAW_STRIDE];
+            rec[0] = 5.0;
+            rec[6] = 2.0;
+            let ((ax, ay), (bx, by)) = (pa.to_f32(), pb.to_f32());
+            rec[8..12].copy_from_slice(&[ax, ay, bx, by]);
+            out.extend_from_slice(&rec);
+        }
+        // The drag spring, as a last record of kind 4: from the held point to the mouse.
+        if let Some(d) = self.drag {
+            if let Ok(b) = w.body(d.body) {
+                let mut rec = [0f32; DRAW_STRIDE];
+                rec[0] = 4.0;
+                rec[6] = 2.0;
+                let (ax, ay) = b.transform().apply(d.anchor).to_f32();
+                let (tx, ty) = d.target.to_f32();
+                rec[8..12].copy_from_slice(&[ax, ay, tx, ty]);
+                out.extend_from_slice(&rec);
+            }
+        }
+        self.draw = out;
+        &self.draw
+    }
+}
+
+/// Adds a spawned body.
+fn apply_spawn(w: &mut World<'static>, spawn_box: PathHandle, s: Spawn) -> Result<BodyHandle, Error> {
+    let def = if s.ball { BodyDef::circle(SPAWN_BALL) } else { BodyDef::polygon(spawn_box) };
+    w.add_body(def.position(s.at))
+}
+
+/// The drag: a zero-length spring from the held point to the mouse of
+/// stiffness ω²·m (ω = 2π·3 Hz, so ω² ≈ 355 /s²), and while held the body's
+/// linear damping raised to 2·ζ·ω = 26.4 /s (ζ = 0.7) and its angular damping
+/// to 4 /s. A damped spring damps only along its axis, so a zero-length one
+/// alone lets the body orbit the mouse; damping the body (relative to the
+/// world, as a mouse joint does) settles it. The stretch the spring pulls with
+/// is at most 1.5 m, which bounds the force at about 530 N per kilogram.
+const DRAG_K_PER_KG: i32 = 355;
+const DRAG_LINEAR_DAMPING: Scalar = Scalar::lit("26.4");
+const DRAG_ANGULAR_DAMPING: Scalar = Scalar::lit("4");
+const DRAG_MAX_STRETCH: Scalar = Scalar::lit("1.5");
+
+/// One frame: the scene's additions, the drag (added for this step only: the
+/// engine has no mouse joint yet), the step. Returns the scene's note if its
+/// spawner failed (the step still happens).
+fn step_frame(running: &mut scenes::Running, frame: u32, drag: Option<Drag>) -> Result<Option<String>, Fail> {
+    let note = running.before_step(frame).err().map(|e| format!("scene spawner: {e}"));
+    let w = running.world_mut();
+    let mut joint = None;
+    let mut restore = None;
+    if let Some(d) = drag {
+        if let Ok(b) = w.body(d.body) {
+            let held = b.transform().apply(d.anchor);
+            let pull = d.target - held;
+            let len = pull.length();
+            let target =
+                if len > DRAG_MAX_STRETCH { held + pull * (DRAG_MAX_STRETCH / len) } else { d.target };
+            let k = (b.mass() * DRAG_K_PER_KG).min(arphysics::limits::MAX_STIFFNESS);
+            let damping = (b.linear_damping(), b.angular_damping());
+            let kind =
+                JointKind::DampedSpring { stiffness: k, damping: Scalar::ZERO, rest_length: Scalar::ZERO };
+            // A failure (a full joint store) only means no pull this frame.
+            joint = w.add_joint(JointDef::to_world(d.body, d.anchor, target, kind)).ok();
+            if joint.is_some()
+                && w.set_linear_damping(d.body, damping.0.max(DRAG_LINEAR_DAMPING)).is_ok()
+                && w.set_angular_damping(d.body, damping.1.max(DRAG_ANGULAR_DAMPING)).is_ok()
+            {
+                restore = Some(damping);
+            }
+        }
+    }
+    let stepped = w.step(dt());
+    if let Some(j) = joint {
+        let _ = w.remove_joint(j);
+    }
+    if let (Some(d), Some((linear, angular))) = (drag, restore) {
+        // The values were valid before: these cannot fail.
+        let _ = w.set_linear_damping(d.body, linear);
+        let _ = w.set_angular_damping(d.body, angular);
+    }
+    stepped?;
+    Ok(note)
+}
