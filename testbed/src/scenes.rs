@@ -6,10 +6,7 @@
 //! testbed's sub-step count and leaves room for spawned bodies and the drag
 //! joint. Capacities are not part of the state, so this room changes no hash.
 
-use arphysics::{
-    BodyDef, BodyHandle, Capsule, Error, GravityForceGenerator, JointDef, JointKind, PolygonPath, Rect,
-    Scalar, Segment, Vector2, World,
-};
+use arphysics::{BodyDef, Capsule, Error, GravityForceGenerator, PolygonPath, Rect, Segment, Vector2, World};
 
 /// The demo's scenes, as examples/demo/scenes.rs has them.
 #[allow(dead_code, unused_imports, clippy::all)]
@@ -144,122 +141,27 @@ pub fn all() -> Vec<Scene> {
     v
 }
 
-// ---- The benchmark scenes: the definitions of benches/scenes.rs. ----
+// ---- The benchmark scenes: benches/scenes/defs.rs, which `cargo bench` times. ----
 
-fn s(x: f64) -> Scalar {
-    Scalar::from_num(x)
-}
-
-fn v(x: f64, y: f64) -> Vector2 {
-    Vector2::new(s(x), s(y))
-}
-
-fn bench_world(bodies: usize, joints: usize) -> Result<World<'static>, Error> {
-    let bounds = Rect::from_corners(v(-1000.0, -100.0), v(1000.0, 1000.0));
-    let caps = arphysics::Capacities {
-        bodies,
-        paths: 16,
-        contacts: bodies * 4,
-        joints,
-        post_step_callbacks: 64,
-        events: 64,
-    };
-    let mut w = crate::scene_world(bounds, caps)?;
-    w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0)))?;
-    Ok(w)
-}
-
-fn pyramid_at(
-    w: &mut World<'_>,
-    unit: arphysics::PathHandle,
-    rows: u32,
-    x0: f64,
-    y0: f64,
-) -> Result<(), Error> {
-    for row in 0..rows {
-        let count = rows - row;
-        for j in 0..count {
-            let x = x0 + f64::from(j) - f64::from(count) * 0.5 + 0.5;
-            w.add_body(BodyDef::polygon(unit).position(v(x, y0 + 0.5 + f64::from(row))))?;
-        }
-    }
-    Ok(())
-}
-
-fn ground(w: &mut World<'_>, half: f64) -> Result<(), Error> {
-    let piece = w.add_path(PolygonPath::rectangle(s(100.0), s(2.0))?)?;
-    let mut x = -half + 50.0;
-    while x < half {
-        w.add_body(BodyDef::polygon(piece).position(v(x, -1.0)).static_body())?;
-        x += 100.0;
-    }
-    Ok(())
-}
+/// The definitions `cargo bench --bench scenes` uses, included as they are.
+#[allow(dead_code, clippy::all)]
+#[path = "../../benches/scenes/defs.rs"]
+mod bench;
 
 fn pyramid_20() -> Result<World<'static>, Error> {
-    let mut w = bench_world(260, 0)?;
-    ground(&mut w, 100.0)?;
-    let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0))?)?;
-    pyramid_at(&mut w, unit, 20, 0.0, 0.0)?;
-    Ok(w)
+    bench::pyramid_20(crate::scene_world)
 }
 
 fn large_pyramid() -> Result<World<'static>, Error> {
-    let mut w = bench_world(5100, 0)?;
-    ground(&mut w, 100.0)?;
-    let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0))?)?;
-    pyramid_at(&mut w, unit, 100, 0.0, 0.0)?;
-    Ok(w)
+    bench::large_pyramid(crate::scene_world)
 }
 
 fn bench_rain() -> Result<World<'static>, Error> {
-    let mut w = bench_world(1100, 0)?;
-    ground(&mut w, 50.0)?;
-    let wall = w.add_path(PolygonPath::rectangle(s(2.0), s(60.0))?)?;
-    for x in [-41.0, 41.0] {
-        w.add_body(BodyDef::polygon(wall).position(v(x, 30.0)).static_body())?;
-    }
-    let unit = w.add_path(PolygonPath::rectangle(s(0.8), s(0.8))?)?;
-    let tri = w.add_path(PolygonPath::new(&[v(-0.5, -0.4), v(0.5, -0.4), v(0.0, 0.5)])?)?;
-    for i in 0..1000 {
-        let (x, y) = (f64::from(i % 50) * 1.5 - 37.0, 10.0 + f64::from(i / 50) * 1.5);
-        let def = match i % 3 {
-            0 => BodyDef::circle(s(0.4)),
-            1 => BodyDef::polygon(unit),
-            _ => BodyDef::polygon(tri),
-        };
-        w.add_body(def.position(v(x, y)))?;
-    }
-    Ok(w)
+    bench::rain(crate::scene_world)
 }
 
 fn joint_grid() -> Result<World<'static>, Error> {
-    let n = 100usize;
-    let mut w = bench_world(n * n + 8, 2 * n * n)?;
-    let mut ids: Vec<BodyHandle> = Vec::with_capacity(n * n);
-    for i in 0..n {
-        for j in 0..n {
-            let mut def =
-                BodyDef::circle(s(0.4)).position(v(j as f64 - 50.0, 150.0 - i as f64)).collision_groups(1);
-            if i == 0 && (j == 0 || j == n - 1) {
-                def = def.static_body();
-            }
-            ids.push(w.add_body(def)?);
-        }
-    }
-    let pivot = JointKind::Pivot { limits: None, motor: None };
-    for i in 0..n {
-        for j in 0..n {
-            let a = ids[i * n + j];
-            if j + 1 < n {
-                w.add_joint(JointDef::new(a, v(0.5, 0.0), ids[i * n + j + 1], v(-0.5, 0.0), pivot))?;
-            }
-            if i + 1 < n {
-                w.add_joint(JointDef::new(a, v(0.0, -0.5), ids[(i + 1) * n + j], v(0.0, 0.5), pivot))?;
-            }
-        }
-    }
-    Ok(w)
+    bench::joint_grid(crate::scene_world)
 }
 
 // ---- The shapes scene. ----
