@@ -536,11 +536,19 @@ fn main() {
             "full (Box2D's step count per scene: a tenth warm-up, then 9 samples)"
         }
     );
+    // `--features avx2` builds Box2D with its AVX2 solver (boxdd's `simd-avx2`);
+    // the Rust engines follow RUSTFLAGS (e.g. `-C target-cpu=native`).
+    let box2d_build = if cfg!(feature = "avx2") { "AVX2 build (`simd-avx2`)" } else { "default SSE2 build" };
+    let rust_cpu = if cfg!(target_feature = "avx2") {
+        "Rust code built with AVX2 enabled (target-cpu)"
+    } else {
+        "Rust code for the default x86-64 target (SSE2; arphysics dispatches its contact kernels to AVX2 at run time)"
+    };
     println!(
         "- engines: arphysics (Q32.32 fixed point, `Index::Auto` = sort-and-sweep broad phase, 4 sub-steps); \
-         Box2D v3 via boxdd 0.6 (vendored C, default SSE2 build, 1 worker, continuous on, 4 sub-steps); \
+         Box2D v3 via boxdd 0.6 (vendored C, {box2d_build}, 1 worker, continuous on, 4 sub-steps); \
          rapier2d 0.36 (f32, default features, IntegrationParameters default: 4 solver iterations \
-         = 4 sub-steps, 1 PGS + 1 stabilisation iteration each)"
+         = 4 sub-steps, 1 PGS + 1 stabilisation iteration each); {rust_cpu}"
     );
     println!("- ms/step = wall clock, median over the samples; ratio = arphysics ÷ peer (how many times slower arphysics is)\n");
     println!("| scene | bodies | arphysics ms/step | Box2D v3 ms/step | rapier2d ms/step | ratio vs Box2D | ratio vs rapier |");
