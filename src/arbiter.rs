@@ -123,6 +123,9 @@ pub struct Arbiter {
     /// [`crate::events`]); for a sensor pair, unused (its `Contact` state
     /// means overlapping). State: in the snapshot and the hash.
     pub(crate) touching: bool,
+    /// The chain link of a pair with a chain (0 otherwise): part of the key.
+    /// State: in the snapshot and the hash (where a pair has a chain).
+    pub(crate) link: u32,
 }
 
 impl Arbiter {
@@ -151,17 +154,34 @@ impl Arbiter {
         restitution: ZERO,
         solve: false,
         touching: false,
+        link: 0,
     };
 
-    /// The canonical key of the pair: (lower body slot, higher body slot).
+    /// The canonical key of the arbiter: (lower body slot, higher body slot,
+    /// chain link; 0 for a pair without a chain).
     #[inline]
-    pub(crate) fn key(&self) -> (u32, u32) {
+    pub(crate) fn key(&self) -> (u32, u32, u32) {
+        let (a, b) = self.pair();
+        (a, b, self.link)
+    }
+
+    /// The body pair: (lower body slot, higher body slot).
+    #[inline]
+    pub(crate) fn pair(&self) -> (u32, u32) {
         let (a, b) = (self.body_a.index(), self.body_b.index());
         if a <= b {
             (a, b)
         } else {
             (b, a)
         }
+    }
+
+    /// For a body against a chain, the chain's link this arbiter is for
+    /// (link `i` runs from the chain's point `i` to the next); 0 otherwise.
+    #[inline]
+    #[must_use]
+    pub fn link(&self) -> u32 {
+        self.link
     }
 
     /// The first body. Bodies are ordered as in the manual: circles before

@@ -229,7 +229,7 @@ pub use force::{
     ForceGenerator, Generator, GeneratorMut, GravityForceGenerator, GravityToPointForceGenerator,
     LinearForceGenerator, Targets,
 };
-pub use geometry::{Capsule, MassData, PolygonPath, Segment};
+pub use geometry::{Capsule, ChainHandle, ChainPath, MassData, PolygonPath, Segment};
 pub use handler::{CallbackContext, ClosureHandler, CollisionHandler, FnHandler, Handler, PostStepFn};
 pub use hook::Hook;
 pub use index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};

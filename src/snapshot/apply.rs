@@ -66,6 +66,7 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
             touching: a.state & TOUCHING != 0,
             steps_separated: a.steps_separated,
             count: a.count,
+            link: a.link,
             ..Arbiter::EMPTY
         };
         for (p, stored) in arb.points.iter_mut().zip(a.points) {

@@ -74,6 +74,11 @@ fn check_props(w: &World<'_>, p: &Props) -> Result<(), Error> {
                 return Err(invalid("segment out of range"));
             }
         }
+        Shape::Chain(h) => {
+            if !w.paths.chains.valid(h) || p.body_type != BodyType::Static {
+                return Err(invalid("a body's chain is not in this world"));
+            }
+        }
     }
     let ok_mass = match p.body_type {
         BodyType::Dynamic => {
@@ -201,7 +206,7 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
     if l.arbiters as usize > w.arbiters.capacity() {
         return Err(Error::SnapshotMismatch { what: "more arbiters than this world holds" });
     }
-    let mut last: Option<(u32, u32)> = None;
+    let mut last: Option<(u32, u32, u32)> = None;
     for i in 0..l.arbiters {
         let a = l.arbiter(i)?;
         let key = a.key();
