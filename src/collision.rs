@@ -373,7 +373,7 @@ pub(crate) type ArbiterKey = (u32, u32, u32);
 impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
     fn new(pairs: &'c [(u32, u32)], bodies: &'b Arena<'a, Body>, shapes: &'b ShapeStore<'a>) -> Self {
         let mut k = Self { pairs, bodies, shapes, i: 0, current: None };
-        k.current = k.from_pair(None);
+        k.current = k.key_at_or_after(None);
         k
     }
 
@@ -383,12 +383,12 @@ impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
 
     fn advance(&mut self) {
         let after = self.current.map(|(x, y, l)| (x, y, l.saturating_add(1)));
-        self.current = self.from_pair(after);
+        self.current = self.key_at_or_after(after);
     }
 
     /// The first key at or after `at` (a pair's next link), else the first
     /// key of the following pairs.
-    fn from_pair(&mut self, at: Option<ArbiterKey>) -> Option<ArbiterKey> {
+    fn key_at_or_after(&mut self, at: Option<ArbiterKey>) -> Option<ArbiterKey> {
         if let Some((x, y, from)) = at {
             if let Some(link) = self.next_link(x, y, from) {
                 return Some((x, y, link));

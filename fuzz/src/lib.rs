@@ -279,7 +279,8 @@ impl WorldSpec {
             joints: usize::from(self.joints % 33),
             post_step_callbacks: arphysics::handler::DEFAULT_POST_STEP_CALLBACKS,
             events: 16,
-        }, chain_vertices: 0
+            chain_vertices: 0,
+        }
     }
 }
 

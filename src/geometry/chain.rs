@@ -15,7 +15,7 @@
 //! to point 0). The links of a chain form an implicit balanced tree in link
 //! order: the node for the links `lo..hi` is link `mid = lo + (hi − lo) / 2`,
 //! with the subtrees `lo..mid` and `mid + 1..hi`, and its box (stored in the
-//! entry of link `mid`) bounds all of them. [`ChainSlab::next_link`] finds the
+//! entry of link `mid`) bounds all of them. The mid-phase finds the
 //! first link at or after a given one whose box meets a query box in
 //! O(log n) per link found (links of a polyline lie next to their
 //! neighbours, so the subtrees' boxes are tight), and returns links in

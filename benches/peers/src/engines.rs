@@ -108,7 +108,8 @@ pub mod ar {
             joints: scene.joints.len().max(1),
             post_step_callbacks: 64,
             events: 64,
-        }, chain_vertices: 0
+            chain_vertices: 0,
+        }
     }
 
     fn body_def(b: &BodyDesc, paths: &[(ShapeDesc, PathHandle)]) -> Result<BodyDef, String> {
