@@ -336,6 +336,7 @@ fn restore_then_step_equals_stepping_on_with_chains() {
         w.step(dt()).expect("step");
     }
     assert!(w.arbiters().any(|a| a.link() != 0), "some arbiter is for a link past the first");
+    assert!(w.snapshot_len() <= w.max_snapshot_len());
     let mut snap = vec![0u8; w.snapshot_len()];
     w.snapshot(&mut snap).expect("snapshot");
     for _ in 0..60 {

@@ -269,7 +269,8 @@ impl World<'_> {
 
     /// The longest snapshot this world can ever write: every body slot used, each
     /// body with its own properties, every generator slot holding a generator
-    /// with the most targets, the contact store full and every joint slot used.
+    /// with the most targets, the contact store full (with each arbiter's chain
+    /// link when the world has room for chains) and every joint slot used.
     /// It depends on the capacities only, so a game can allocate its rollback
     /// ring buffer once (`frames × max_snapshot_len()`); [`World::restore`]
     /// accepts the longer buffer.

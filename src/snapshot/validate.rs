@@ -214,6 +214,9 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
             return Err(invalid("arbiters out of order"));
         }
         last = Some(key);
+        if a.link != 0 && w.paths.chains.used() == 0 {
+            return Err(invalid("a chain link in a world without chains"));
+        }
         if !live_body(l, a.a)? || !live_body(l, a.b)? {
             return Err(invalid("an arbiter names a body that is not in the snapshot"));
         }

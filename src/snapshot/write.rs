@@ -129,10 +129,10 @@ pub(super) fn max_len(w: &World<'_>) -> usize {
     sections_len(
         bodies,
         bodies,
-        w.generators
-            .capacity()
-            .saturating_mul(MAX_GENERATOR_BYTES)
-            .saturating_add(w.arbiters.capacity().saturating_mul(4)),
+        // A world with room for chains may write each arbiter's link too.
+        w.generators.capacity().saturating_mul(MAX_GENERATOR_BYTES).saturating_add(
+            if w.paths.chains.capacity() > 0 { w.arbiters.capacity().saturating_mul(4) } else { 0 },
+        ),
         w.arbiters.capacity(),
         w.joints.capacity(),
     )
