@@ -252,25 +252,14 @@ fn queries_see_chain_links_from_their_front() {
         .expect("hits");
     assert!((f(cast.fraction) - 2.5 / 6.0).abs() < 2e-3, "{}", f(cast.fraction));
     assert!((f(cast.normal.y) - 1.0).abs() < 1e-6);
-    let mut out = [BodyHandle::NULL; 4];
-    let n = w
-        .query_shape(
-            QueryShape::Circle(s(0.5)),
-            Transform::new(v(3.3, 0.4), arphysics::Rot::IDENTITY),
-            all,
-            &mut out,
-        )
-        .expect("query");
-    assert_eq!((n, out[0]), (1, ground));
-    let n = w
-        .query_shape(
-            QueryShape::Circle(s(0.5)),
-            Transform::new(v(3.3, 0.6), arphysics::Rot::IDENTITY),
-            all,
-            &mut out,
-        )
-        .expect("query");
-    assert_eq!(n, 0);
+    // A 0.5 m circle 0.4 m above the ground overlaps it; 0.6 m above, not.
+    for (y, expected) in [(0.4, 1), (0.6, 0)] {
+        let mut out = [BodyHandle::NULL; 4];
+        let at = Transform::new(v(3.3, y), arphysics::Rot::IDENTITY);
+        let n = w.query_shape(QueryShape::Circle(s(0.5)), at, all, &mut out).expect("query");
+        assert_eq!(n, expected, "at y {y}");
+        assert!(n == 0 || out[0] == ground);
+    }
 }
 
 #[test]

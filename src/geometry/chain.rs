@@ -327,27 +327,23 @@ impl<'a> ChainSlab<'a> {
 
 /// The world box of a body-local box placed by `xf` (its four corners').
 pub(crate) fn transform_rect(r: Rect, xf: Transform) -> Rect {
-    let corners = [r.min, Vector2::new(r.max.x, r.min.y), r.max, Vector2::new(r.min.x, r.max.y)];
-    let first = xf.apply(r.min);
-    let mut out = Rect { min: first, max: first };
-    for c in corners {
-        let p = xf.apply(c);
-        out = Rect { min: out.min.min(p), max: out.max.max(p) };
-    }
-    out
+    corners_box(r, |p| xf.apply(p))
 }
 
 /// The body-local box that holds a world box `r` seen from a body placed by
 /// `xf`.
 pub(crate) fn local_rect(r: Rect, xf: Transform) -> Rect {
+    corners_box(r, |p| xf.apply_inv(p))
+}
+
+/// The box of the four corners of `r` mapped by `map`.
+fn corners_box(r: Rect, map: impl Fn(Vector2) -> Vector2) -> Rect {
     let corners = [r.min, Vector2::new(r.max.x, r.min.y), r.max, Vector2::new(r.min.x, r.max.y)];
-    let first = xf.apply_inv(r.min);
-    let mut out = Rect { min: first, max: first };
-    for c in corners {
-        let p = xf.apply_inv(c);
-        out = Rect { min: out.min.min(p), max: out.max.max(p) };
-    }
-    out
+    let first = map(r.min);
+    corners
+        .into_iter()
+        .map(map)
+        .fold(Rect { min: first, max: first }, |b, p| Rect { min: b.min.min(p), max: b.max.max(p) })
 }
 
 #[cfg(test)]
