@@ -335,7 +335,7 @@ pub(crate) fn update_arbiters(
         // that close.
         let near = boxes_within(a.aabb, b.aabb, SPECULATIVE_DISTANCE);
         let manifold = if candidate && near && wants_pair(a, b) {
-            collide_bodies(a, b, paths, arb.link, SPECULATIVE_DISTANCE)
+            collide_bodies(a, b, paths, arb.link(), SPECULATIVE_DISTANCE)
         } else {
             Manifold::EMPTY
         };
@@ -521,7 +521,7 @@ pub(crate) fn touch_events(
     for arb in arbiters.live_mut() {
         let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else { continue };
         if sensor_pair(a, b) {
-            let overlap = wants_pair(a, b) && overlapping(a, b, paths, arb.link);
+            let overlap = wants_pair(a, b) && overlapping(a, b, paths, arb.link());
             let was = arb.state == ArbiterState::Contact;
             if overlap != was {
                 let (sensor, visitor) =
@@ -529,7 +529,7 @@ pub(crate) fn touch_events(
                 events.sensor(overlap, sensor, visitor);
             }
             arb.state = if overlap { ArbiterState::Contact } else { ArbiterState::NoCollision };
-            arb.steps_separated = 0;
+            arb.reset_steps_separated();
             drop_any |= !overlap;
             continue;
         }
@@ -643,7 +643,7 @@ fn lifecycle(
     arb.solve = false;
     if m.count > 0 {
         set_manifold(arb, m);
-        arb.steps_separated = 0;
+        arb.reset_steps_separated();
         if matches!(arb.state, ArbiterState::NoCollision | ArbiterState::Separated) {
             arb.state = ArbiterState::FirstContact;
             let resolve = handlers.get(arb.level_a, arb.level_b).is_none_or(|h| h.begin(arb, ctx));
@@ -743,9 +743,9 @@ fn pair_arbiter(
         body_b: second,
         level_a: fa.collision_level,
         level_b: fb.collision_level,
-        link,
         ..Arbiter::EMPTY
     };
+    out.set_steps_and_link(0, link);
 }
 
 /// A body's broad-phase proxy: its box grown by the speculative distance and

@@ -10,7 +10,7 @@
 use super::layout::{Alloc, BodyRecord, GeneratorRecord, Layout, StoredGenerator};
 use super::write::{paths_checksum, Props};
 use super::{invalid, NO_LINK, TOUCHING};
-use crate::arbiter::ArbiterState;
+use crate::arbiter::{ArbiterState, MAX_LINK, MAX_STEPS_SEPARATED};
 use crate::body::{BodyHandle, BodyType, Shape};
 use crate::error::Error;
 use crate::force::{Generator, Targets};
@@ -216,6 +216,9 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
         last = Some(key);
         if a.link != 0 && w.paths.chains.used() == 0 {
             return Err(invalid("a chain link in a world without chains"));
+        }
+        if a.link > MAX_LINK || a.steps_separated > MAX_STEPS_SEPARATED {
+            return Err(invalid("an arbiter's link or steps since separation out of range"));
         }
         if !live_body(l, a.a)? || !live_body(l, a.b)? {
             return Err(invalid("an arbiter names a body that is not in the snapshot"));

@@ -262,7 +262,7 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
             rec.u32(h.generation());
         }
         rec.u8(a.state as u8 | if a.touching { TOUCHING } else { 0 });
-        rec.u32(a.steps_separated);
+        rec.u32(a.steps_separated());
         rec.u8(a.count);
         for (k, p) in a.points.iter().enumerate() {
             // Unused point slots are written as zeros so equal states encode equally.
@@ -278,7 +278,7 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
     }
     if links {
         for a in live {
-            s.u32(a.link);
+            s.u32(a.link());
         }
     }
 
@@ -310,7 +310,7 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
 /// True when an arbiter is for a chain link other than 0 (the links are
 /// then written after the arbiter records).
 fn has_links(w: &World<'_>) -> bool {
-    w.arbiters.live().iter().any(|a| a.link != 0)
+    w.arbiters.live().iter().any(|a| a.link() != 0)
 }
 
 /// A free-list link in the 30-bit form.
