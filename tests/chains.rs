@@ -380,3 +380,47 @@ fn a_world_without_chains_encodes_as_before() {
     let expected = 16 + 104 + 4 + 2 * 118 + 12 + 2 * 64 + 12 + (9 + 16 + 1) + 4 + 58 + 12 + 8;
     assert_eq!(n, expected);
 }
+
+#[test]
+fn a_full_contact_store_with_chain_links_degrades_and_keeps_stepping() {
+    // Room for 8 arbiters; 12 boxes resting across joins want about 24.
+    let bounds = Rect::from_corners(v(-50.0, -50.0), v(150.0, 50.0));
+    let caps = Capacities { contacts: 8, chain_vertices: 128, ..Capacities::for_bodies(32) };
+    let mut w = World::with_capacities(WorldDef::with_bounds(bounds), caps).expect("world");
+    w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0))).expect("gravity");
+    flat_chain(&mut w);
+    let path = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("path");
+    for i in 0..12 {
+        w.add_body(BodyDef::polygon(path).position(v(f64::from(i) * 3.0 + 1.0, 0.6))).expect("box");
+    }
+    let mut dropped = 0;
+    for _ in 0..60 {
+        let report = w.step(dt()).expect("a full store never stops the step");
+        assert!(report.arbiters as usize <= 8);
+        dropped += report.arbiters_dropped;
+    }
+    assert!(dropped > 0, "the store was never full");
+    // The boxes that kept their arbiters (the lowest keys) rest on the chain.
+    let resting = w.bodies().filter(|(_, b)| (f(b.position().y) - 0.5).abs() < 0.01).count();
+    assert!(resting >= 3, "{resting} boxes rest on the chain");
+}
+
+#[test]
+fn bodies_share_a_chain_at_their_own_poses() {
+    let mut w = world();
+    // One 4 m ledge, used by two bodies: at x = 0 and, turned upside down, at
+    // x = 10 (its front then faces down).
+    let ledge = [v(2.0, 0.0), v(0.0, 0.0), v(-2.0, 0.0)];
+    let chain = w.add_chain(ChainPath::open(&ledge).expect("path")).expect("room");
+    w.add_body(BodyDef::chain(chain).position(v(0.0, 0.0))).expect("ledge");
+    w.add_body(BodyDef::chain(chain).position(v(10.0, 0.0)).angle(s(std::f64::consts::PI))).expect("ledge");
+    assert_eq!(w.chain_vertices().0, 3, "shared, not copied");
+    let a = w.add_body(BodyDef::circle(s(0.25)).position(v(0.5, 2.0))).expect("ball");
+    let b = w.add_body(BodyDef::circle(s(0.25)).position(v(10.5, 2.0))).expect("ball");
+    for _ in 0..120 {
+        w.step(dt()).expect("step");
+    }
+    let (ya, yb) = (f(w.body(a).expect("a").position().y), f(w.body(b).expect("b").position().y));
+    assert!((ya - 0.25).abs() < 0.01, "rests on the first ledge: {ya}");
+    assert!(yb < -1.0, "falls through the back of the turned ledge: {yb}");
+}
