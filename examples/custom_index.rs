@@ -170,8 +170,15 @@ impl SpatialIndex for UniformGrid {
 fn build<'a>() -> Result<World<'a>, arphysics::Error> {
     let cm = |n: i32| Scalar::from_num(n) / 100;
     let bounds = Rect::from_corners(Vector2::from_int(-32, -8), Vector2::from_int(32, 56));
-    let capacities =
-        Capacities { bodies: 260, paths: 8, contacts: 1200, joints: 0, post_step_callbacks: 64, events: 64 };
+    let capacities = Capacities {
+        bodies: 260,
+        paths: 8,
+        contacts: 1200,
+        joints: 0,
+        post_step_callbacks: 64,
+        events: 64,
+        chain_vertices: 0,
+    };
     let mut w = World::with_capacities(WorldDef::with_bounds(bounds), capacities)?;
     w.add_force_generator(GravityForceGenerator::new(Vector2::from_int(0, -10)))?;
     let ground = w.add_path(PolygonPath::rectangle(cm(4400), cm(100))?)?;

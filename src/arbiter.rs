@@ -111,7 +111,11 @@ pub struct Arbiter {
     pub(crate) level_a: u32,
     pub(crate) level_b: u32,
     pub(crate) state: ArbiterState,
-    pub(crate) steps_separated: u32,
+    /// The steps since separation (bits 0–11, see [`Arbiter::steps_separated`])
+    /// and the chain link of a pair with a chain (bits 12–31, 0 otherwise;
+    /// part of the key), packed so that the arbiter stays 256 bytes. State:
+    /// in the snapshot and the hash (the link where a pair has a chain).
+    pub(crate) steps_and_link: u32,
     pub(crate) normal: Vector2,
     pub(crate) points: [ContactPoint; 2],
     pub(crate) count: u8,
@@ -125,6 +129,15 @@ pub struct Arbiter {
     pub(crate) touching: bool,
 }
 
+/// Bits of [`Arbiter::steps_and_link`] that count the steps since separation.
+const STEP_BITS: u32 = 12;
+/// The most steps since separation an arbiter counts (4,095; the persistence
+/// is at most 256).
+pub const MAX_STEPS_SEPARATED: u32 = (1 << STEP_BITS) - 1;
+/// The highest chain link an arbiter can name (2^20 − 1, more than a chain
+/// of [`MAX_CHAIN_VERTICES`](crate::geometry::MAX_CHAIN_VERTICES) points has).
+pub const MAX_LINK: u32 = u32::MAX >> STEP_BITS;
+
 impl Arbiter {
     pub(crate) const EMPTY: Self = Self {
         body_a: BodyHandle::NULL,
@@ -132,7 +145,7 @@ impl Arbiter {
         level_a: 0,
         level_b: 0,
         state: ArbiterState::NoCollision,
-        steps_separated: 0,
+        steps_and_link: 0,
         normal: Vector2::ZERO,
         points: [ContactPoint {
             point: Vector2::ZERO,
@@ -153,15 +166,38 @@ impl Arbiter {
         touching: false,
     };
 
-    /// The canonical key of the pair: (lower body slot, higher body slot).
+    /// The canonical key of the arbiter: (lower body slot, higher body slot,
+    /// chain link; 0 for a pair without a chain).
     #[inline]
-    pub(crate) fn key(&self) -> (u32, u32) {
+    pub(crate) fn key(&self) -> (u32, u32, u32) {
+        let (a, b) = self.pair();
+        (a, b, self.link())
+    }
+
+    /// The body pair: (lower body slot, higher body slot).
+    #[inline]
+    pub(crate) fn pair(&self) -> (u32, u32) {
         let (a, b) = (self.body_a.index(), self.body_b.index());
         if a <= b {
             (a, b)
         } else {
             (b, a)
         }
+    }
+
+    /// For a body against a chain, the chain's link this arbiter is for
+    /// (link `i` runs from the chain's point `i` to the next); 0 otherwise.
+    #[inline]
+    #[must_use]
+    pub fn link(&self) -> u32 {
+        self.steps_and_link >> STEP_BITS
+    }
+
+    /// Sets the chain link (at most [`MAX_LINK`]) and the steps since
+    /// separation (at most [`MAX_STEPS_SEPARATED`]), saturating.
+    #[inline]
+    pub(crate) fn set_steps_and_link(&mut self, steps: u32, link: u32) {
+        self.steps_and_link = (link.min(MAX_LINK) << STEP_BITS) | steps.min(MAX_STEPS_SEPARATED);
     }
 
     /// The first body. Bodies are ordered as in the manual: circles before
@@ -298,15 +334,22 @@ impl Arbiter {
     #[inline]
     #[must_use]
     pub fn steps_separated(&self) -> u32 {
-        self.steps_separated
+        self.steps_and_link & MAX_STEPS_SEPARATED
     }
 
     /// The manual's `increaseStepCount`: adds one to the steps since separation
-    /// and returns the new count. The engine calls it for arbiters that are not
-    /// touching; a custom lifecycle may too.
+    /// (saturating at [`MAX_STEPS_SEPARATED`]) and returns the new count. The
+    /// engine calls it for arbiters that are not touching; a custom lifecycle
+    /// may too.
     pub fn increase_step_count(&mut self) -> u32 {
-        self.steps_separated = self.steps_separated.saturating_add(1);
-        self.steps_separated
+        self.set_steps_and_link(self.steps_separated().saturating_add(1), self.link());
+        self.steps_separated()
+    }
+
+    /// Sets the steps since separation to 0.
+    #[inline]
+    pub(crate) fn reset_steps_separated(&mut self) {
+        self.steps_and_link &= !MAX_STEPS_SEPARATED;
     }
 }
 
@@ -411,5 +454,24 @@ impl<'a> ArbiterStore<'a> {
             }
             None => false,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_arbiter_is_256_bytes_and_packs_its_link_with_the_step_count() {
+        assert_eq!(core::mem::size_of::<Arbiter>(), 256);
+        let mut a = Arbiter::EMPTY;
+        a.set_steps_and_link(3, MAX_LINK);
+        assert_eq!((a.steps_separated(), a.link()), (3, MAX_LINK));
+        assert_eq!(a.increase_step_count(), 4);
+        a.reset_steps_separated();
+        assert_eq!((a.steps_separated(), a.link()), (0, MAX_LINK));
+        a.set_steps_and_link(MAX_STEPS_SEPARATED, 7);
+        assert_eq!(a.increase_step_count(), MAX_STEPS_SEPARATED, "saturates");
+        assert_eq!(a.link(), 7);
     }
 }

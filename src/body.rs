@@ -10,7 +10,8 @@
 //! [`PolygonPath`]: crate::geometry::PolygonPath
 
 use crate::arena::{Arena, Handle};
-use crate::geometry::{Capsule, MassData, PolygonPath, Segment};
+use crate::geometry::chain::ChainSlab;
+use crate::geometry::{Capsule, ChainHandle, MassData, PolygonPath, Segment};
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rect, Rot, Transform, Vector2};
 
@@ -60,11 +61,16 @@ pub enum Shape {
     /// A line segment: no area, no thickness (ground, walls, terrain). Segments
     /// do not collide with segments.
     Segment(Segment),
+    /// A chain: a static polyline or loop of one-sided links with ghost
+    /// vertices (terrain), its points in the world's chain slab (see
+    /// [`World::add_chain`](crate::World::add_chain)). Chains collide with
+    /// neither chains nor segments.
+    Chain(ChainHandle),
 }
 
 impl Shape {
     /// The order used to canonicalise pairs (shape A is the lower rank):
-    /// circles, then capsules, then polygons, then segments. The manual's
+    /// circles, then capsules, then polygons, then segments, then chains. The manual's
     /// circle-before-polygon order is kept.
     #[inline]
     #[must_use]
@@ -74,7 +80,28 @@ impl Shape {
             Self::Capsule(_) => 1,
             Self::Polygon(_) => 2,
             Self::Segment(_) => 3,
+            Self::Chain(_) => 4,
         }
+    }
+}
+
+/// The world's shape data that bodies refer to: the polygon paths (what
+/// this dereferences to) and the chain slab.
+pub(crate) struct ShapeStore<'a> {
+    pub(crate) paths: Arena<'a, PolygonPath>,
+    pub(crate) chains: ChainSlab<'a>,
+}
+
+impl<'a> core::ops::Deref for ShapeStore<'a> {
+    type Target = Arena<'a, PolygonPath>;
+    fn deref(&self) -> &Self::Target {
+        &self.paths
+    }
+}
+
+impl core::ops::DerefMut for ShapeStore<'_> {
+    fn deref_mut(&mut self) -> &mut Self::Target {
+        &mut self.paths
     }
 }
 
@@ -467,17 +494,18 @@ impl Body {
 
 /// The bounding radius of `shape` about the body's position (m): 0 for a
 /// polygon whose path is gone.
-pub(crate) fn shape_radius(shape: Shape, paths: &Arena<'_, PolygonPath>) -> Scalar {
+pub(crate) fn shape_radius(shape: Shape, paths: &ShapeStore<'_>) -> Scalar {
     match shape {
         Shape::Circle { radius } => radius,
         Shape::Polygon(h) => paths.get(h).map_or(ZERO, PolygonPath::radius),
         Shape::Capsule(c) => c.bounding_radius(),
         Shape::Segment(s) => s.bounding_radius(),
+        Shape::Chain(h) => paths.chains.radius(h),
     }
 }
 
 /// The world bounding box of a body at its current transform.
-pub(crate) fn compute_aabb(b: &Body, paths: &Arena<'_, PolygonPath>) -> Rect {
+pub(crate) fn compute_aabb(b: &Body, paths: &ShapeStore<'_>) -> Rect {
     match b.shape {
         Shape::Circle { radius } => Rect::from_center(b.position, Vector2::new(radius, radius)),
         Shape::Polygon(h) => match paths.get(h) {
@@ -489,6 +517,9 @@ pub(crate) fn compute_aabb(b: &Body, paths: &Arena<'_, PolygonPath>) -> Rect {
         },
         Shape::Capsule(c) => c.aabb(b.transform()),
         Shape::Segment(s) => s.aabb(b.transform()),
+        Shape::Chain(h) => {
+            paths.chains.aabb(h, b.transform()).unwrap_or(Rect { min: b.position, max: b.position })
+        }
     }
 }
 

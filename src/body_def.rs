@@ -172,6 +172,17 @@ impl BodyDef {
         def
     }
 
+    /// A **static** chain made by [`World::add_chain`](crate::World::add_chain),
+    /// its points relative to [`position`](Self::position): terrain whose
+    /// links a body slides across without catching on the joins. A chain has
+    /// no mass: a kinematic or dynamic chain body is an error when added.
+    #[must_use]
+    pub fn chain(chain: crate::geometry::ChainHandle) -> Self {
+        let mut def = Self::with_shape(Shape::Chain(chain));
+        def.body_type = BodyType::Static;
+        def
+    }
+
     fn with_shape(shape: Shape) -> Self {
         Self {
             shape,

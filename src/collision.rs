@@ -14,16 +14,17 @@ use crate::hook::Hook;
 
 use crate::arbiter::{mix_friction, mix_restitution, Arbiter, ArbiterState, ArbiterStore, ContactPoint};
 use crate::arena::Arena;
-use crate::body::{Body, BodyHandle, BodyType, Shape};
+use crate::body::{Body, BodyHandle, BodyType, Shape, ShapeStore};
 use crate::collide::{
-    collide_capsule_circle, collide_capsules, collide_circles, collide_polygon_capsule,
-    collide_polygon_circle, collide_polygons, collide_segment_capsule, collide_segment_circle,
-    collide_segment_polygon, Manifold,
+    collide_capsule_circle, collide_capsules, collide_chain_segment_capsule, collide_chain_segment_circle,
+    collide_chain_segment_polygon, collide_circles, collide_polygon_capsule, collide_polygon_circle,
+    collide_polygons, collide_segment_capsule, collide_segment_circle, collide_segment_polygon, Manifold,
 };
 use crate::constraint::{Joint, JointMarker};
 use crate::error::Error;
 use crate::events::{ContactBeginEvent, ContactHitEvent, Events, TOUCH_DISTANCE};
-use crate::geometry::{Capsule, PolygonPath, Segment};
+use crate::geometry::chain::local_rect;
+use crate::geometry::{Capsule, ChainSegment, PolygonPath, Segment};
 use crate::handler::{CallbackContext, HandlerTable, PostStepQueue};
 use crate::index::{
     dedup_sorted, sweep_sorted, BruteForceIndex, PairSink, Proxy, SortAndSweepIndex, SpatialIndex,
@@ -94,7 +95,7 @@ impl BroadPhase<'_> {
 /// (both infinite-mass bodies ⇒ skip), no shared collision-group bit (the
 /// manual's rule, a veto), and Box2D's category/mask/group rule
 /// ([`CollisionFilter::accepts`](crate::CollisionFilter::accepts)); never
-/// two segments.
+/// two segments or chains.
 pub(crate) fn should_collide(a: &Body, b: &Body) -> bool {
     (a.body_type == BodyType::Dynamic || b.body_type == BodyType::Dynamic)
         && (a.collision_groups & b.collision_groups) == 0
@@ -102,10 +103,11 @@ pub(crate) fn should_collide(a: &Body, b: &Body) -> bool {
         && !both_segments(a, b)
 }
 
-/// True when both bodies are segments (which never collide).
+/// True when both bodies are segments or chains (which never collide).
 #[inline]
 fn both_segments(a: &Body, b: &Body) -> bool {
-    matches!((a.shape, b.shape), (Shape::Segment(_), Shape::Segment(_)))
+    let line = |s: &Shape| matches!(s, Shape::Segment(_) | Shape::Chain(_));
+    line(&a.shape) && line(&b.shape)
 }
 
 /// True when two bodies make a pair the engine tracks: a contact pair
@@ -113,12 +115,13 @@ fn both_segments(a: &Body, b: &Body) -> bool {
 /// moving body (a static sensor detects kinematic bodies too), and both
 /// filters passed as for a contact pair (the collision groups and the
 /// category/mask/group rule). Sensors never detect sensors, and segments
-/// never meet segments (neither has an inside to push out of).
+/// never meet segments (neither has an inside to push out of). Sensors do
+/// not detect chains (a chain pair is one arbiter per link, not one overlap).
 pub(crate) fn wants_pair(a: &Body, b: &Body) -> bool {
     if !a.sensor && !b.sensor {
         return should_collide(a, b);
     }
-    if a.sensor && b.sensor {
+    if (a.sensor && b.sensor) || matches!(a.shape, Shape::Chain(_)) || matches!(b.shape, Shape::Chain(_)) {
         return false;
     }
     let moving = a.body_type != BodyType::Static || b.body_type != BodyType::Static;
@@ -271,7 +274,7 @@ pub(crate) fn update_arbiters(
     ctx: &StepContext,
     candidates: &[(u32, u32)],
     bodies: &Arena<'_, Body>,
-    paths: &Arena<'_, PolygonPath>,
+    paths: &ShapeStore<'_>,
     arbiters: &mut ArbiterStore<'_>,
     handlers: &mut HandlerTable<'_>,
     post_step: &mut PostStepQueue<'_>,
@@ -281,9 +284,10 @@ pub(crate) fn update_arbiters(
     // Each arbiter is built in its output slot (a 256-byte record copied once,
     // not at every hand-over); a dropped one leaves `out` where it was, so
     // the next overwrites it.
-    let (mut i, mut j, mut out, mut skipped) = (0usize, 0usize, 0usize, 0usize);
+    let (mut j, mut out, mut skipped) = (0usize, 0usize, 0usize);
+    let mut keys = CandidateKeys::new(candidates, bodies, paths);
     loop {
-        let (cand, old) = (candidates.get(i).copied(), live.get(j));
+        let (cand, old) = (keys.peek(), live.get(j));
         let (key, candidate, previous) = match (cand, old) {
             (None, None) => break,
             (Some(k), None) => (k, true, None),
@@ -295,7 +299,7 @@ pub(crate) fn update_arbiters(
             },
         };
         if candidate {
-            i = i.saturating_add(1);
+            keys.advance();
         }
         if previous.is_some() {
             j = j.saturating_add(1);
@@ -312,7 +316,7 @@ pub(crate) fn update_arbiters(
         let (Some((ha, ba)), Some((hb, bb))) = (live_at(bodies, key.0), live_at(bodies, key.1)) else {
             continue;
         };
-        pair_arbiter((ha, ba), (hb, bb), previous, arb);
+        pair_arbiter((ha, ba), (hb, bb), key.2, previous, arb);
         let (a, b) = if arb.body_a == ha { (ba, bb) } else { (bb, ba) };
         if sensor_pair(a, b) {
             // Overlap is judged after the solve ([`touch_events`]); a sensor
@@ -331,7 +335,7 @@ pub(crate) fn update_arbiters(
         // that close.
         let near = boxes_within(a.aabb, b.aabb, SPECULATIVE_DISTANCE);
         let manifold = if candidate && near && wants_pair(a, b) {
-            collide_bodies(a, b, paths, SPECULATIVE_DISTANCE)
+            collide_bodies(a, b, paths, arb.link(), SPECULATIVE_DISTANCE)
         } else {
             Manifold::EMPTY
         };
@@ -347,6 +351,81 @@ pub(crate) fn update_arbiters(
     }
     arbiters.swap_in_next(out);
     skipped
+}
+
+/// The candidate keys in order: each candidate body pair's key with link 0,
+/// or, for a pair with a chain, one key per link whose box meets the other
+/// body's box grown by the speculative distance (the mid-phase: the chain's
+/// link tree gives them in increasing order, O(log n) each).
+struct CandidateKeys<'c, 'b, 'a> {
+    pairs: &'c [(u32, u32)],
+    bodies: &'b Arena<'a, Body>,
+    shapes: &'b ShapeStore<'a>,
+    /// The next pair to expand.
+    i: usize,
+    /// The key `peek` returns.
+    current: Option<ArbiterKey>,
+}
+
+/// An arbiter's key: (lower body slot, higher body slot, chain link).
+pub(crate) type ArbiterKey = (u32, u32, u32);
+
+impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
+    fn new(pairs: &'c [(u32, u32)], bodies: &'b Arena<'a, Body>, shapes: &'b ShapeStore<'a>) -> Self {
+        let mut k = Self { pairs, bodies, shapes, i: 0, current: None };
+        k.current = k.key_at_or_after(None);
+        k
+    }
+
+    fn peek(&self) -> Option<ArbiterKey> {
+        self.current
+    }
+
+    fn advance(&mut self) {
+        let after = self.current.map(|(x, y, l)| (x, y, l.saturating_add(1)));
+        self.current = self.key_at_or_after(after);
+    }
+
+    /// The first key at or after `at` (a pair's next link), else the first
+    /// key of the following pairs.
+    fn key_at_or_after(&mut self, at: Option<ArbiterKey>) -> Option<ArbiterKey> {
+        if let Some((x, y, from)) = at {
+            if let Some(link) = self.next_link(x, y, from) {
+                return Some((x, y, link));
+            }
+            self.i = self.i.saturating_add(1);
+        }
+        loop {
+            let &(x, y) = self.pairs.get(self.i)?;
+            if self.chain_of(x, y).is_none() {
+                return Some((x, y, 0));
+            }
+            if let Some(link) = self.next_link(x, y, 0) {
+                return Some((x, y, link));
+            }
+            self.i = self.i.saturating_add(1);
+        }
+    }
+
+    /// The chain body of a pair and the other body, if one is a chain.
+    fn chain_of(&self, x: u32, y: u32) -> Option<(&'b Body, &'b Body)> {
+        let (a, b) = (self.bodies.get_at(x)?, self.bodies.get_at(y)?);
+        match (a.shape, b.shape) {
+            (Shape::Chain(_), _) => Some((a, b)),
+            (_, Shape::Chain(_)) => Some((b, a)),
+            _ => None,
+        }
+    }
+
+    /// The first link at or after `from` of the chain pair `(x, y)` near the
+    /// other body; `None` past the last or for a pair without a chain past
+    /// link 0.
+    fn next_link(&self, x: u32, y: u32, from: u32) -> Option<u32> {
+        let (chain, other) = self.chain_of(x, y)?;
+        let Shape::Chain(h) = chain.shape else { return None };
+        let query = local_rect(other.aabb.expand(SPECULATIVE_DISTANCE), chain.transform());
+        self.shapes.chains.next_link(h, from, query)
+    }
 }
 
 /// Calls `end` for an arbiter dropped from a full store, if it had begun and
@@ -433,7 +512,7 @@ fn fastest_approach(arb: &Arbiter) -> (Scalar, Vector2) {
 /// every body's pose at the start of the step.
 pub(crate) fn touch_events(
     bodies: &Arena<'_, Body>,
-    paths: &Arena<'_, PolygonPath>,
+    paths: &ShapeStore<'_>,
     solver: &[SolverBody],
     arbiters: &mut ArbiterStore<'_>,
     events: &mut Events<'_>,
@@ -442,7 +521,7 @@ pub(crate) fn touch_events(
     for arb in arbiters.live_mut() {
         let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else { continue };
         if sensor_pair(a, b) {
-            let overlap = wants_pair(a, b) && overlapping(a, b, paths);
+            let overlap = wants_pair(a, b) && overlapping(a, b, paths, arb.link());
             let was = arb.state == ArbiterState::Contact;
             if overlap != was {
                 let (sensor, visitor) =
@@ -450,7 +529,7 @@ pub(crate) fn touch_events(
                 events.sensor(overlap, sensor, visitor);
             }
             arb.state = if overlap { ArbiterState::Contact } else { ArbiterState::NoCollision };
-            arb.steps_separated = 0;
+            arb.reset_steps_separated();
             drop_any |= !overlap;
             continue;
         }
@@ -515,11 +594,11 @@ fn separation_now(arb: &Arbiter, a: (&Body, &SolverBody), b: (&Body, &SolverBody
 
 /// True when two bodies' shapes overlap now (a separation below zero; no
 /// margin). Frozen bodies overlap nothing.
-fn overlapping(a: &Body, b: &Body, paths: &Arena<'_, PolygonPath>) -> bool {
+fn overlapping(a: &Body, b: &Body, paths: &ShapeStore<'_>, link: u32) -> bool {
     if a.out_of_bounds || b.out_of_bounds || !a.aabb.overlaps(b.aabb) {
         return false;
     }
-    let m = collide_bodies(a, b, paths, Scalar::ZERO);
+    let m = collide_bodies(a, b, paths, link, Scalar::ZERO);
     m.points().iter().any(|p| p.separation < Scalar::ZERO)
 }
 
@@ -564,7 +643,7 @@ fn lifecycle(
     arb.solve = false;
     if m.count > 0 {
         set_manifold(arb, m);
-        arb.steps_separated = 0;
+        arb.reset_steps_separated();
         if matches!(arb.state, ArbiterState::NoCollision | ArbiterState::Separated) {
             arb.state = ArbiterState::FirstContact;
             let resolve = handlers.get(arb.level_a, arb.level_b).is_none_or(|h| h.begin(arb, ctx));
@@ -644,6 +723,7 @@ fn live_at<'b>(bodies: &'b Arena<'_, Body>, index: u32) -> Option<(BodyHandle, &
 fn pair_arbiter(
     x: (BodyHandle, &Body),
     y: (BodyHandle, &Body),
+    link: u32,
     previous: Option<&Arbiter>,
     out: &mut Arbiter,
 ) {
@@ -665,6 +745,7 @@ fn pair_arbiter(
         level_b: fb.collision_level,
         ..Arbiter::EMPTY
     };
+    out.set_steps_and_link(0, link);
 }
 
 /// A body's broad-phase proxy: its box grown by the speculative distance and
@@ -695,8 +776,8 @@ fn proxy(ctx: &StepContext, b: &Body) -> Proxy {
 /// The contact manifold of two bodies in canonical order (normal from A to B),
 /// with points reported up to `margin` apart.
 #[inline]
-fn collide_bodies(a: &Body, b: &Body, paths: &Arena<'_, PolygonPath>, margin: Scalar) -> Manifold {
-    match (ShapeRef::of(&a.shape, paths), ShapeRef::of(&b.shape, paths)) {
+fn collide_bodies(a: &Body, b: &Body, paths: &ShapeStore<'_>, link: u32, margin: Scalar) -> Manifold {
+    match (ShapeRef::of(&a.shape, paths, link), ShapeRef::of(&b.shape, paths, link)) {
         (Some(sa), Some(sb)) => collide_canonical(sa, a.transform(), sb, b.transform(), margin),
         _ => Manifold::EMPTY,
     }
@@ -713,17 +794,21 @@ pub(crate) enum ShapeRef<'p> {
     Polygon(&'p PolygonPath),
     /// A segment.
     Segment(&'p Segment),
+    /// One link of a chain, with its ghost vertices.
+    ChainLink(ChainSegment),
 }
 
 impl<'p> ShapeRef<'p> {
-    /// The body's shape; `None` for a polygon whose path is gone.
+    /// The body's shape (for a chain, its link `link`); `None` for a polygon
+    /// whose path is gone or a link the chain does not have.
     #[inline]
-    pub(crate) fn of(shape: &'p Shape, paths: &'p Arena<'_, PolygonPath>) -> Option<Self> {
+    pub(crate) fn of(shape: &'p Shape, paths: &'p ShapeStore<'_>, link: u32) -> Option<Self> {
         Some(match shape {
             Shape::Circle { radius } => Self::Circle(*radius),
             Shape::Capsule(c) => Self::Capsule(c),
             Shape::Polygon(h) => Self::Polygon(paths.get(*h)?),
             Shape::Segment(s) => Self::Segment(s),
+            Shape::Chain(h) => Self::ChainLink(paths.chains.link(*h, link)?),
         })
     }
 
@@ -735,6 +820,7 @@ impl<'p> ShapeRef<'p> {
             Self::Capsule(_) => 1,
             Self::Polygon(_) => 2,
             Self::Segment(_) => 3,
+            Self::ChainLink(_) => 4,
         }
     }
 }
@@ -778,6 +864,9 @@ fn collide_canonical(
         (S::Capsule(c), S::Polygon(p)) => flip(collide_polygon_capsule(p, xb, c, xa, margin)),
         (S::Capsule(c), S::Segment(sg)) => flip(collide_segment_capsule(sg, xb, c, xa, margin)),
         (S::Polygon(p), S::Segment(sg)) => flip(collide_segment_polygon(sg, xb, p, xa, margin)),
+        (S::Circle(r), S::ChainLink(l)) => flip(collide_chain_segment_circle(&l, xb, r, xa, margin)),
+        (S::Capsule(c), S::ChainLink(l)) => flip(collide_chain_segment_capsule(&l, xb, c, xa, margin)),
+        (S::Polygon(p), S::ChainLink(l)) => flip(collide_chain_segment_polygon(&l, xb, p, xa, margin)),
         // Not canonical (a caller's mistake) or two segments, which never
         // collide (as in Box2D): the pair filters drop those pairs first.
         _ => Manifold::EMPTY,
@@ -798,11 +887,13 @@ fn boxes_within(a: Rect, b: Rect, d: Scalar) -> bool {
     b.min.x - a.max.x <= d && a.min.x - b.max.x <= d && b.min.y - a.max.y <= d && a.min.y - b.max.y <= d
 }
 
-/// Size of the union of two key-sorted lists.
+/// Size of the union of two key-sorted lists, counted by body pair (a
+/// chain pair's links after the first are counted only as the arbiters hold
+/// them: strict capacity is approximate for chains).
 fn merged_len(pairs: &[(u32, u32)], arbiters: &[Arbiter]) -> usize {
     let (mut i, mut j, mut n) = (0usize, 0usize, 0usize);
     while i < pairs.len() || j < arbiters.len() {
-        match (pairs.get(i), arbiters.get(j).map(Arbiter::key)) {
+        match (pairs.get(i), arbiters.get(j).map(Arbiter::pair)) {
             (Some(p), Some(k)) if *p == k => {
                 i = i.saturating_add(1);
                 j = j.saturating_add(1);

@@ -47,13 +47,14 @@
 
 use crate::arbiter::ArbiterStore;
 use crate::arena::Arena;
-use crate::body::{compute_aabb, Body, BodyType, Shape};
+use crate::body::{compute_aabb, Body, BodyType, Shape, ShapeStore};
 use crate::collide::{time_of_impact, Swept};
 use crate::collision::{should_collide, BroadPhase};
+use crate::geometry::chain::local_rect;
 use crate::geometry::PolygonPath;
 use crate::limits::SPECULATIVE_DISTANCE;
 use crate::math::scalar::{ONE, ZERO};
-use crate::math::{Rot, Scalar, Transform, Vector2};
+use crate::math::{Rect, Rot, Scalar, Transform, Vector2};
 use crate::solver::SolverBody;
 
 /// How far short of a surface a fast body is put back (m): a quarter of the
@@ -84,23 +85,25 @@ pub(crate) const FAST: u8 = 1;
 const SCAN: u8 = 2;
 
 /// The least distance from a body's centre to its surface (m).
-fn core_extent(b: &Body, paths: &Arena<'_, PolygonPath>) -> Scalar {
+fn core_extent(b: &Body, paths: &ShapeStore<'_>) -> Scalar {
     match b.shape {
         Shape::Circle { radius } => radius,
         Shape::Polygon(h) => paths.get(h).map_or(ZERO, PolygonPath::core_extent),
         // The thickness a capsule keeps whatever its length; a segment has none.
         Shape::Capsule(c) => c.radius(),
-        Shape::Segment(_) => ZERO,
+        Shape::Segment(_) | Shape::Chain(_) => ZERO,
     }
 }
 
 /// The swept shape of a body.
-fn swept<'p>(b: &'p Body, paths: &'p Arena<'_, PolygonPath>) -> Option<Swept<'p>> {
+fn swept<'p>(b: &'p Body, paths: &'p ShapeStore<'_>) -> Option<Swept<'p>> {
     match &b.shape {
         Shape::Circle { radius } => Some(Swept::Circle(*radius)),
         Shape::Polygon(h) => paths.get(*h).map(Swept::Polygon),
         Shape::Capsule(c) => Some(Swept::Capsule(c)),
         Shape::Segment(sg) => Some(Swept::Segment(sg)),
+        // Swept link by link (see `Pass::pair`).
+        Shape::Chain(_) => None,
     }
 }
 
@@ -109,7 +112,7 @@ fn swept<'p>(b: &'p Body, paths: &'p Arena<'_, PolygonPath>) -> Option<Swept<'p>
 /// bodies hold their poses now (still with their start-of-step boxes).
 pub(crate) fn run(
     bodies: &mut Arena<'_, Body>,
-    paths: &Arena<'_, PolygonPath>,
+    paths: &ShapeStore<'_>,
     solver: &mut [SolverBody],
     bp: &BroadPhase<'_>,
     candidates: usize,
@@ -197,7 +200,7 @@ pub(crate) fn run(
 /// bodies, or the bullets against every non-bullet body.
 struct Pass<'p, 'a> {
     bodies: &'p Arena<'a, Body>,
-    paths: &'p Arena<'a, PolygonPath>,
+    paths: &'p ShapeStore<'a>,
     arbiters: &'p ArbiterStore<'a>,
     /// Body-slot pairs a joint keeps from colliding, sorted.
     held: &'p [(u32, u32)],
@@ -230,25 +233,53 @@ impl Pass<'_, '_> {
             return None;
         }
         // A pair the game chose not to solve this step is not stopped either.
-        if let Ok(k) = self.arbiters.live().binary_search_by_key(&key, |a| a.key()) {
-            if self.arbiters.live().get(k).is_some_and(|a| !a.solve) {
-                return None;
-            }
+        // (For a chain, when none of its links' arbiters is solved.)
+        let live = self.arbiters.live();
+        let first = live.partition_point(|a| a.pair() < key);
+        let mut pair = live.get(first..).unwrap_or(&[]).iter().take_while(|a| a.pair() == key).peekable();
+        if pair.peek().is_some() && pair.all(|a| !a.solve) {
+            return None;
         }
-        let (shape_f, shape_o) = (swept(bf, self.paths)?, swept(bo, self.paths)?);
+        let shape_f = swept(bf, self.paths)?;
         let xf = Transform::new(sf.p0, sf.q0);
         let d = (bf.position - sf.p0) - motion_o;
         let reach_o = turn_o.abs() * bo.radius;
         let gap = TOI_GAP + reach_o + sf.angle.abs() * bf.radius;
-        *sweeps = sweeps.saturating_add(1);
-        let t = time_of_impact(shape_o, xo, shape_f, xf, d, gap)?;
-        if t > ZERO {
-            return Some(t);
+        let sweep = |shape_o: Swept<'_>, sweeps: &mut u32| {
+            *sweeps = sweeps.saturating_add(1);
+            let t = time_of_impact(shape_o, xo, shape_f, xf, d, gap)?;
+            if t > ZERO {
+                return Some(t);
+            }
+            // Within reach already: sweep the core, which does not turn.
+            let core = Swept::Circle(core_extent(bf, self.paths) * CORE);
+            *sweeps = sweeps.saturating_add(1);
+            time_of_impact(shape_o, xo, core, xf, d, TOI_GAP + reach_o).filter(|&t| t > ZERO)
+        };
+        let Shape::Chain(h) = bo.shape else { return sweep(swept(bo, self.paths)?, sweeps) };
+        // A chain: each link near the path whose front the body starts in
+        // front of (links are one-sided), the earliest impact.
+        let r = Vector2::new(bf.radius, bf.radius);
+        let path = Rect::from_center(sf.p0, r).union(Rect::from_center(bf.position, r)).expand(gap);
+        let query = local_rect(path, xo);
+        let start = xo.apply_inv(sf.p0);
+        let (mut link, mut best) = (0u32, None::<Scalar>);
+        while let Some(k) = self.paths.chains.next_link(h, link, query) {
+            link = k.saturating_add(1);
+            let Some(l) = self.paths.chains.link(h, k) else { break };
+            let (p1, p2) = (l.segment().point1(), l.segment().point2());
+            if (p2 - p1).cross(start - p1) > ZERO {
+                continue;
+            }
+            let seg = l.segment();
+            if let Some(t) = sweep(Swept::Segment(&seg), sweeps) {
+                best = Some(best.map_or(t, |b| b.min(t)));
+            }
+            if k == u32::MAX {
+                break;
+            }
         }
-        // Within reach already: sweep the core, which does not turn.
-        let core = Swept::Circle(core_extent(bf, self.paths) * CORE);
-        *sweeps = sweeps.saturating_add(1);
-        time_of_impact(shape_o, xo, core, xf, d, TOI_GAP + reach_o).filter(|&t| t > ZERO)
+        best
     }
 }
 

@@ -147,12 +147,14 @@
 //! | time step | [2^-16, 0.25] s ([`MIN_TIME_STEP`], [`MAX_TIME_STEP`]) | bounded motion per step; 1/sub-step ≤ 2^20 per second |
 //! | polygon | ≤ 8 vertices ([`geometry::MAX_POLYGON_VERTICES`]); a rounding radius the core keeps a positive area with | fixed-size, no allocation |
 //! | capsule, segment | half the length plus the radius ≤ 128 m (a segment ≤ 256 m long, ≥ 2^-20 m) | re-centred on the body, within the body radius |
+//! | chain | ≥ 2 points (a loop ≥ 3), each link a valid segment (≥ 2^-20 m, ≤ 256 m, points within ±2^20 m); static only | the points of all chains fit [`Capacities::chain_vertices`] |
 //!
 //! # Coming from Box2D or Chipmunk
 //! | Box2D v3 | Chipmunk | arphysics |
 //! |---|---|---|
 //! | `b2WorldDef`, `b2CreateWorld` | `cpSpaceNew` | [`WorldDef`], [`World::new`] / [`World::with_capacities`] (capacities fixed up front) |
 //! | `b2BodyDef` + `b2ShapeDef` + `b2CreatePolygonShape` / `Capsule` / `Segment` | `cpBodyNew` + `cpPolyShapeNew` / `cpSegmentShapeNew` | [`BodyDef::circle`] / [`BodyDef::polygon`] / [`BodyDef::capsule`] / [`BodyDef::segment`]: one shape per body; polygons share a [`PolygonPath`] ([`PolygonPath::rounded`] for `b2MakeRoundedBox`) |
+//! | `b2ChainDef`, `b2CreateChain` | — | [`ChainPath`], [`World::add_chain`], [`BodyDef::chain`]: one static body per chain, one arbiter per touching link |
 //! | `b2BodyId` (world + index + generation) | `cpBody*` | [`BodyHandle`] (index + generation + world tag; stale or foreign ⇒ [`Error::StaleHandle`]) |
 //! | `b2_staticBody` / `b2_kinematicBody` / `b2_dynamicBody` | `cpBodyNewStatic` / kinematic / dynamic | [`BodyType`] |
 //! | `b2BodyDef::isBullet`, continuous collision | — | [`BodyDef::bullet`]; fast bodies are always swept against static and kinematic bodies ([`continuous`]) |
@@ -229,7 +231,7 @@ pub use force::{
     ForceGenerator, Generator, GeneratorMut, GravityForceGenerator, GravityToPointForceGenerator,
     LinearForceGenerator, Targets,
 };
-pub use geometry::{Capsule, MassData, PolygonPath, Segment};
+pub use geometry::{Capsule, ChainHandle, ChainPath, MassData, PolygonPath, Segment};
 pub use handler::{CallbackContext, ClosureHandler, CollisionHandler, FnHandler, Handler, PostStepFn};
 pub use hook::Hook;
 pub use index::{BruteForceIndex, PairSink, Proxy, SpatialIndex};

@@ -17,9 +17,9 @@
 //! size² is bounded, e.g. a 128 m circle weighs at most 122 kg).
 
 use crate::arena::Arena;
+use crate::body::ShapeStore;
 use crate::body::{compute_aabb, Body, BodyType};
 use crate::error::Error;
-use crate::geometry::PolygonPath;
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::Vector2;
 use crate::step::StepContext;
@@ -199,11 +199,7 @@ pub const MIN_TIME_STEP: Scalar = Scalar::from_bits(1 << 16);
 /// The limits stage: speeds clamped to the world's maxima, bodies whose centre
 /// left the bounds frozen, bounding boxes refreshed. Returns how many bodies left
 /// the bounds this step.
-pub(crate) fn enforce(
-    ctx: &StepContext,
-    bodies: &mut Arena<'_, Body>,
-    paths: &Arena<'_, PolygonPath>,
-) -> u32 {
+pub(crate) fn enforce(ctx: &StepContext, bodies: &mut Arena<'_, Body>, paths: &ShapeStore<'_>) -> u32 {
     let (vmax, wmax) = (ctx.max_linear_speed, ctx.max_angular_speed);
     let mut left = 0u32;
     // |v|² is compared with vmax² (it fits: each component is clamped to at

@@ -11,10 +11,12 @@ use crate::body::{Body, BodyHandle, Shape};
 use crate::collide::{time_of_impact, Swept};
 use crate::collision::{collide_shapes, ShapeRef};
 use crate::error::Error;
+use crate::geometry::chain::local_rect;
 use crate::geometry::ray::{
     capsule_contains, polygon_contains, ray_capsule, ray_circle, ray_polygon, ray_segment,
 };
 use crate::geometry::{Capsule, PolygonPath, Segment};
+use crate::geometry::{ChainHandle, ChainSegment};
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rect, Transform, Vector2};
 use crate::world::World;
@@ -183,8 +185,49 @@ impl<'a> World<'a> {
             Shape::Polygon(h) => ray_polygon(from, dir, length, self.paths.get(h)?, b.transform()),
             Shape::Capsule(c) => ray_capsule(from, dir, length, &c, b.transform()),
             Shape::Segment(sg) => ray_segment(from, dir, length, &sg, b.transform()),
+            Shape::Chain(h) => {
+                // The nearest link the ray enters from its front side.
+                let span = Rect::from_corners(from, from + dir * length);
+                let mut best: Option<(Scalar, Vector2)> = None;
+                self.each_link(b, h, span, |l| {
+                    let sg = l.segment();
+                    let front = b.rotation.rotate((sg.point2() - sg.point1()).right_perp());
+                    if front.dot(dir) >= ZERO {
+                        return false;
+                    }
+                    if let Some(hit) = ray_segment(from, dir, length, &sg, b.transform()) {
+                        if best.is_none_or(|(t, _)| hit.distance < t) {
+                            best = Some((hit.distance, hit.normal));
+                        }
+                    }
+                    false
+                });
+                return best;
+            }
         }?;
         Some((hit.distance, hit.normal))
+    }
+
+    /// Calls `f` with each link of chain `h` (the shape of body `b`) whose
+    /// box meets the world box `area`, in link order, until `f` returns true.
+    /// Returns whether it did.
+    fn each_link(
+        &self,
+        b: &Body,
+        h: ChainHandle,
+        area: Rect,
+        mut f: impl FnMut(ChainSegment) -> bool,
+    ) -> bool {
+        let query = local_rect(area, b.transform());
+        let mut from = 0u32;
+        while let Some(k) = self.paths.chains.next_link(h, from, query) {
+            if self.paths.chains.link(h, k).is_some_and(&mut f) {
+                return true;
+            }
+            let Some(next) = k.checked_add(1) else { break };
+            from = next;
+        }
+        false
     }
 
     fn hits<'s>(
@@ -266,8 +309,8 @@ impl<'a> World<'a> {
                         self.paths.get(h).is_some_and(|p| polygon_contains(p, b.transform(), point))
                     }
                     Shape::Capsule(c) => capsule_contains(&c, b.transform(), point),
-                    // No area: a segment contains no point.
-                    Shape::Segment(_) => false,
+                    // No area: a segment or a chain contains no point.
+                    Shape::Segment(_) | Shape::Chain(_) => false,
                 }
         });
         collect(found.map(|(h, _)| h), out)
@@ -314,9 +357,14 @@ impl<'a> World<'a> {
             if !filter.accepts(*h, b) || !b.aabb.overlaps(area) {
                 return false;
             }
-            let Some(body_shape) = ShapeRef::of(&b.shape, &self.paths) else { return false };
-            let m = collide_shapes(shape.as_ref(), xf, body_shape, b.transform(), ZERO);
-            m.points().iter().any(|p| p.separation <= ZERO)
+            let touches = |body_shape: ShapeRef<'_>| {
+                let m = collide_shapes(shape.as_ref(), xf, body_shape, b.transform(), ZERO);
+                m.points().iter().any(|p| p.separation <= ZERO)
+            };
+            if let Shape::Chain(ch) = b.shape {
+                return self.each_link(b, ch, area, |l| touches(ShapeRef::ChainLink(l)));
+            }
+            ShapeRef::of(&b.shape, &self.paths, 0).is_some_and(touches)
         });
         Ok(collect(found.map(|(h, _)| h), out))
     }
@@ -359,38 +407,54 @@ impl World<'_> {
         let start = Rect::from_center(xf.p, Vector2::new(reach, reach));
         let end = Rect::from_center(xf.p + translation, Vector2::new(reach, reach));
         let swept_box = Rect { min: start.min.min(end.min), max: start.max.max(end.max) };
-        let Some(moving) = swept_of(cast) else { return Ok(None) };
+        let Some(moving) = swept_of(&cast) else { return Ok(None) };
         let mut best: Option<RayHit> = None;
         for (h, b) in self.bodies.iter() {
             if !filter.accepts(h, b) || !b.aabb.overlaps(swept_box) {
                 continue;
             }
-            let Some(body_shape) = ShapeRef::of(&b.shape, &self.paths) else { continue };
-            let Some(still) = swept_of(body_shape) else { continue };
             let bx = b.transform();
-            let Some(t) = time_of_impact(still, bx, moving, xf, translation, ZERO) else { continue };
-            if best.is_some_and(|hit| hit.fraction <= t) {
+            let try_shape = |body_shape: ShapeRef<'_>, best: &mut Option<RayHit>| {
+                let Some(still) = swept_of(&body_shape) else { return };
+                let Some(t) = time_of_impact(still, bx, moving, xf, translation, ZERO) else { return };
+                if best.is_some_and(|hit| hit.fraction <= t) {
+                    return;
+                }
+                let at = Transform::new(xf.p + translation * t, xf.q);
+                let m = collide_shapes(body_shape, bx, cast, at, CAST_MARGIN);
+                let (normal, point) = match m.points().first() {
+                    Some(p) => (m.normal, p.point),
+                    None => (-translation.try_normalize().unwrap_or(Vector2::ZERO), at.p),
+                };
+                *best = Some(RayHit { body: h, point, normal, fraction: t });
+            };
+            if let Shape::Chain(ch) = b.shape {
+                // Links the shape starts in front of (they are one-sided).
+                let start = bx.apply_inv(xf.p);
+                self.each_link(b, ch, swept_box, |l| {
+                    let sg = l.segment();
+                    if (sg.point2() - sg.point1()).cross(start - sg.point1()) <= ZERO {
+                        try_shape(ShapeRef::ChainLink(l), &mut best);
+                    }
+                    false
+                });
                 continue;
             }
-            let at = Transform::new(xf.p + translation * t, xf.q);
-            let m = collide_shapes(body_shape, bx, cast, at, CAST_MARGIN);
-            let (normal, point) = match m.points().first() {
-                Some(p) => (m.normal, p.point),
-                None => (-translation.try_normalize().unwrap_or(Vector2::ZERO), at.p),
-            };
-            best = Some(RayHit { body: h, point, normal, fraction: t });
+            let Some(body_shape) = ShapeRef::of(&b.shape, &self.paths, 0) else { continue };
+            try_shape(body_shape, &mut best);
         }
         Ok(best)
     }
 }
 
 /// The sweep form of a shape.
-fn swept_of(shape: ShapeRef<'_>) -> Option<Swept<'_>> {
+fn swept_of<'s>(shape: &'s ShapeRef<'_>) -> Option<Swept<'s>> {
     match shape {
-        ShapeRef::Circle(r) => Some(Swept::Circle(r)),
+        ShapeRef::Circle(r) => Some(Swept::Circle(*r)),
         ShapeRef::Polygon(p) => Some(Swept::Polygon(p)),
         ShapeRef::Capsule(c) => Some(Swept::Capsule(c)),
         ShapeRef::Segment(sg) => Some(Swept::Segment(sg)),
+        ShapeRef::ChainLink(l) => Some(Swept::Segment(&l.segment)),
     }
 }
 

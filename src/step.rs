@@ -50,13 +50,13 @@
 use crate::arbiter::ArbiterStore;
 use crate::arena::Arena;
 use crate::body::Body;
+use crate::body::ShapeStore;
 use crate::collision::{self, BroadPhase};
 use crate::constraint::{Joint, JointMarker, UserConstraints, JOINT_DAMPING_RATIO, JOINT_HERTZ};
 use crate::continuous;
 use crate::error::Error;
 use crate::events::Events;
 use crate::force::{self, Generators};
-use crate::geometry::PolygonPath;
 use crate::handler::{HandlerTable, PostStepQueue};
 use crate::limits::{self, MAX_TIME_STEP, MIN_TIME_STEP};
 use crate::math::scalar::{self, Scalar};
@@ -191,7 +191,7 @@ impl StepContext {
 /// stage gets exactly the ones it touches.
 pub(crate) struct StepParts<'w, 'a> {
     pub(crate) bodies: &'w mut Arena<'a, Body>,
-    pub(crate) paths: &'w Arena<'a, PolygonPath>,
+    pub(crate) paths: &'w ShapeStore<'a>,
     pub(crate) generators: &'w mut Generators<'a>,
     pub(crate) broad_phase: &'w mut BroadPhase<'a>,
     pub(crate) arbiters: &'w mut ArbiterStore<'a>,

@@ -132,7 +132,15 @@ impl SpatialIndex for Backwards {
 }
 
 fn four_balls(contacts: usize) -> World<'static> {
-    let caps = Capacities { bodies: 8, paths: 1, contacts, joints: 1, post_step_callbacks: 4, events: 64 };
+    let caps = Capacities {
+        bodies: 8,
+        paths: 1,
+        contacts,
+        joints: 1,
+        post_step_callbacks: 4,
+        events: 64,
+        chain_vertices: 0,
+    };
     let mut w = World::with_capacities(WorldDef::new(s(50.0), s(50.0)), caps).expect("world");
     for x in [10.0, 11.5, 20.0, 21.5] {
         w.add_body(BodyDef::circle(s(1.0)).position(v(x, 10.0))).expect("ball");

@@ -30,8 +30,15 @@ pub fn plain_world(bounds: Rect, caps: Capacities) -> Result<World<'static>, arp
 /// A world for `bodies` bodies and `joints` joints, gravity (0, −10).
 fn world(make: MakeWorld, bodies: usize, joints: usize) -> Result<World<'static>, arphysics::Error> {
     let bounds = Rect::from_corners(v(-1000.0, -100.0), v(1000.0, 1000.0));
-    let caps =
-        Capacities { bodies, paths: 16, contacts: bodies * 4, joints, post_step_callbacks: 64, events: 64 };
+    let caps = Capacities {
+        bodies,
+        paths: 16,
+        contacts: bodies * 4,
+        joints,
+        post_step_callbacks: 64,
+        events: 64,
+        chain_vertices: 0,
+    };
     let mut w = make(bounds, caps)?;
     w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0)))?;
     Ok(w)

@@ -4,8 +4,8 @@
 //! on every machine. Floats appear only in the viewport, which is for drawing.
 
 use arphysics::{
-    BodyDef, BodyHandle, Capacities, Capsule, Error, GravityForceGenerator, JointDef, JointKind, PathHandle,
-    PolygonPath, Rect, Rot, Scalar, Segment, Vector2, World, WorldDef,
+    BodyDef, BodyHandle, Capacities, Capsule, ChainPath, Error, GravityForceGenerator, JointDef, JointKind,
+    PathHandle, PolygonPath, Rect, Rot, Scalar, Vector2, World, WorldDef,
 };
 
 /// `n` centimetres (or centiradians), exactly.
@@ -192,7 +192,7 @@ pub const SCENES: &[Scene] = &[
     },
     Scene {
         name: "terrain",
-        about: "capsules, rounded boxes and every other shape raining onto hills of segments",
+        about: "capsules, rounded boxes and every other shape raining onto hills of one chain",
         seconds: 10,
         view: (-21.0, -1.0, 21.0, 24.0),
         build: terrain,
@@ -203,8 +203,15 @@ pub const SCENES: &[Scene] = &[
 /// bounds a little larger than anything the scenes reach.
 fn world(bodies: usize, joints: usize) -> Result<World<'static>, Error> {
     let bounds = Rect::from_corners(Vector2::from_int(-60, -20), Vector2::from_int(60, 80));
-    let capacities =
-        Capacities { bodies, paths: 16, contacts: bodies * 4, joints, post_step_callbacks: 64, events: 64 };
+    let capacities = Capacities {
+        bodies,
+        paths: 16,
+        contacts: bodies * 4,
+        joints,
+        post_step_callbacks: 64,
+        events: 64,
+        chain_vertices: 64,
+    };
     let mut w = World::with_capacities(WorldDef::with_bounds(bounds), capacities)?;
     w.add_force_generator(GravityForceGenerator::new(Vector2::from_int(0, -10)))?;
     Ok(w)
@@ -389,8 +396,8 @@ fn rain() -> Result<Running, Error> {
     Ok(Running { world: w, spawn: Some(spawn) })
 }
 
-/// Rolling hills of static segments (one body per segment, ends shared
-/// exactly), a rounded ledge, and every shape kind raining down: capsules
+/// Rolling hills of one static chain (its links one-sided, nothing catches
+/// at the joins), a rounded ledge, and every shape kind raining down: capsules
 /// roll and slide, rounded boxes tumble, the sharp shapes settle in the
 /// hollows.
 fn terrain() -> Result<Running, Error> {
@@ -398,11 +405,11 @@ fn terrain() -> Result<Running, Error> {
     // Heights (cm) of the hills' corners, 2 m apart from x = −20 m.
     const HEIGHTS: [i32; 21] =
         [900, 600, 350, 180, 100, 90, 140, 260, 300, 220, 120, 60, 40, 80, 180, 320, 360, 300, 420, 650, 900];
-    for (i, pair) in HEIGHTS.windows(2).enumerate() {
-        let x = -2000 + 200 * i as i32;
-        let seg = Segment::new(at(x, pair[0]), at(x + 200, pair[1]))?;
-        w.add_body(BodyDef::segment(seg).friction(cm(50)))?;
-    }
+    // Walked right to left, so the links' solid side is below them.
+    let points: Vec<Vector2> =
+        HEIGHTS.iter().enumerate().rev().map(|(i, &h)| at(-2000 + 200 * i as i32, h)).collect();
+    let hills = w.add_chain(ChainPath::open(&points)?)?;
+    w.add_body(BodyDef::chain(hills).friction(cm(50)))?;
     let ledge = w.add_path(PolygonPath::rounded_rectangle(cm(400), cm(60), cm(25))?)?;
     w.add_body(BodyDef::polygon(ledge).position(at(-900, 900)).angle(cm(-25)).static_body())?;
     let rounded = w.add_path(PolygonPath::rounded_rectangle(cm(90), cm(70), cm(15))?)?;

@@ -27,6 +27,8 @@ enum Outline {
     Polygon(Vec<(f64, f64)>, f64),
     /// Two centres and the radius (0 for a segment, drawn as a thin line).
     Capsule((f64, f64), (f64, f64), f64),
+    /// A chain's points and whether it closes (drawn as a thin polyline).
+    Chain(Vec<(f64, f64)>, bool),
 }
 
 /// One body's poses: x, y (m) and the angle in degrees, unwrapped so that the
@@ -86,6 +88,9 @@ fn colour(body: &Body, world: &World<'_>, jointed: bool) -> (Outline, &'static s
             (Outline::Capsule(xy(c.center1()), xy(c.center2()), c.radius().to_num()), fill)
         }
         Shape::Segment(sg) => (Outline::Capsule(xy(sg.point1()), xy(sg.point2()), 0.0), "#6c757d"),
+        Shape::Chain(h) => {
+            (Outline::Chain(world.chain_points(h).map(xy).collect(), h.is_closed()), "#6c757d")
+        }
     }
 }
 
@@ -326,6 +331,15 @@ fn shape(look: &Look) -> String {
                 num(b.1, 3),
                 look.fill,
                 num(width, 3)
+            )
+        }
+        Outline::Chain(v, closed) => {
+            let points: Vec<String> = v.iter().map(|p| format!("{},{}", num(p.0, 3), num(p.1, 3))).collect();
+            let tag = if *closed { "polygon" } else { "polyline" };
+            format!(
+                r#"<{tag} points="{}" fill="none" stroke="{}" stroke-width="0.08" stroke-linejoin="round"/>"#,
+                points.join(" "),
+                look.fill
             )
         }
     }

@@ -279,6 +279,7 @@ impl WorldSpec {
             joints: usize::from(self.joints % 33),
             post_step_callbacks: arphysics::handler::DEFAULT_POST_STEP_CALLBACKS,
             events: 16,
+            chain_vertices: 0,
         }
     }
 }

@@ -18,7 +18,9 @@
 //!    beside it, with separations along the link's normal (nothing when that
 //!    edge lies beside the strip: the neighbour has it). A circle has no edge
 //!    to clip: its ghost contact is dropped (its centre is then beside the
-//!    strip, where the neighbour's face contact holds it).
+//!    strip, where the neighbour's face contact holds it). A ghost equal to
+//!    its end (an open chain's first or last point) is a free end: every
+//!    normal on the link's front side is admitted there.
 //!
 //! Box2D v3 has the same rules (`b2CollideChainSegmentAndPolygon`, its smooth
 //! segment cases); this is our own formulation of them.
@@ -191,11 +193,13 @@ impl Link {
         if along > zero {
             // Past p2: the join with the next link, convex when it turns left.
             let next = self.ghost2 - self.p2;
-            let Some((w, _)) = direction_and_length(next) else { return false };
+            // A free end (an open chain's last point): a corner turned all
+            // the way, every front normal is the link's.
+            let Some((w, _)) = direction_and_length(next) else { return true };
             self.u.cross(next) > zero && nl.dot(self.n) >= nl.dot(w.right_perp())
         } else {
             let previous = self.p1 - self.ghost1;
-            let Some((w, _)) = direction_and_length(previous) else { return false };
+            let Some((w, _)) = direction_and_length(previous) else { return true };
             previous.cross(self.u) > zero && nl.dot(self.n) > nl.dot(w.right_perp())
         }
     }

@@ -10,6 +10,7 @@
 //! chain of fixed-point operations.
 
 pub mod capsule;
+pub mod chain;
 pub mod chain_segment;
 pub mod circle;
 pub mod mass;
@@ -17,6 +18,7 @@ pub mod polygon_path;
 pub mod ray;
 
 pub use capsule::{Capsule, Segment, MIN_SEGMENT_LENGTH};
+pub use chain::{ChainHandle, ChainNode, ChainPath, CHAIN_BYTES_PER_VERTEX, MAX_CHAIN_VERTICES};
 pub use chain_segment::ChainSegment;
 pub use circle::{circle_area, circle_unit_inertia, MAX_CIRCLE_RADIUS};
 pub use mass::{MassData, MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};

@@ -64,10 +64,10 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
             level_b: level(a.b),
             state: ArbiterState::from_u8(a.state & !TOUCHING).unwrap_or(ArbiterState::Separated),
             touching: a.state & TOUCHING != 0,
-            steps_separated: a.steps_separated,
             count: a.count,
             ..Arbiter::EMPTY
         };
+        arb.set_steps_and_link(a.steps_separated, a.link);
         for (p, stored) in arb.points.iter_mut().zip(a.points) {
             p.id = stored.id;
             p.normal_impulse = stored.normal_impulse;

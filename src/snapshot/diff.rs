@@ -129,10 +129,10 @@ pub fn diff(a: &[u8], b: &[u8]) -> Result<Option<Difference>, Error> {
     }
     for i in 0..la.arbiters {
         let (aa, ab) = (la.arbiter(i)?, lb.arbiter(i)?);
-        let (x, y) = aa.key();
+        let (x, y, _) = aa.key();
         let object = Object::Arbiter(x, y);
         let fields = [
-            (aa.key() != ab.key() || aa.a != ab.a || aa.b != ab.b, "bodies"),
+            (aa.key() != ab.key() || aa.a != ab.a || aa.b != ab.b, "bodies or chain link"),
             (aa.state != ab.state, "state"),
             (aa.steps_separated != ab.steps_separated, "steps since separation"),
             (aa.count != ab.count, "contact point count"),

@@ -13,8 +13,8 @@
 use super::cursor::Cursor;
 use super::write::Props;
 use super::{
-    checksum, invalid, ARBITER_RECORD, BODY_RECORD, BULLET, FIXED_ROTATION, HEADER, JOINT_RECORD, LINK_MASK,
-    LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, TRAILER, VERSION,
+    checksum, invalid, ARBITER_LINKS, ARBITER_RECORD, BODY_RECORD, BULLET, FIXED_ROTATION, HEADER,
+    JOINT_RECORD, LINK_MASK, LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, TRAILER, VERSION,
 };
 use crate::body::{BodyHandle, BodyType, CollisionFilter, Shape};
 use crate::constraint::{Joint, JointDef, JointKind, MaxTorque, Motor};
@@ -22,7 +22,7 @@ use crate::error::Error;
 use crate::force::{
     Generator, GravityForceGenerator, GravityToPointForceGenerator, LinearForceGenerator, Targets,
 };
-use crate::geometry::{Capsule, Segment};
+use crate::geometry::{Capsule, ChainHandle, Segment};
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rot, Vector2};
 use crate::world::{WorldDef, MAX_FORCE_GENERATORS};
@@ -50,6 +50,8 @@ pub(super) struct Layout<'b> {
     pub(super) generators_at: usize,
     pub(super) arbiters: u32,
     pub(super) arbiters_at: usize,
+    /// Where the arbiters' chain links are, when any is not 0.
+    pub(super) links_at: Option<usize>,
     pub(super) joints: Alloc,
     pub(super) joints_at: usize,
     /// The world tag of the handles read (0 unless [`Layout::for_world`]).
@@ -133,8 +135,13 @@ impl<'b> Layout<'b> {
             read_generator(&mut c)?;
         }
         let arbiters = c.u32()?;
+        let (arbiters, with_links) = (arbiters & !ARBITER_LINKS, arbiters & ARBITER_LINKS != 0);
         let arbiters_at = c.pos();
         skip_records(&mut c, arbiters, ARBITER_RECORD)?;
+        let links_at = with_links.then(|| c.pos());
+        if with_links {
+            skip_records(&mut c, arbiters, 4)?;
+        }
         let joints = read_alloc(&mut c)?;
         let joints_at = c.pos();
         skip_records(&mut c, joints.used, JOINT_RECORD)?;
@@ -154,6 +161,7 @@ impl<'b> Layout<'b> {
             generators_at,
             arbiters,
             arbiters_at,
+            links_at,
             joints,
             joints_at,
             tag: 0,
@@ -194,6 +202,15 @@ impl<'b> Layout<'b> {
             3 => {
                 let h = c.vector()?;
                 (Shape::Segment(Segment { point1: -h, point2: h }), 16)
+            }
+            4 => {
+                let (start, count) = (c.u32()?, c.u32()?);
+                let closed = match c.u64()? {
+                    0 => false,
+                    1 => true,
+                    _ => return Err(invalid("unknown chain kind")),
+                };
+                (Shape::Chain(ChainHandle { start, count, closed }), 16)
             }
             _ => return Err(invalid("unknown shape")),
         };
@@ -268,7 +285,11 @@ impl<'b> Layout<'b> {
         for p in &mut points {
             *p = PointRecord { id: c.u16()?, normal_impulse: c.scalar()?, tangent_impulse: c.scalar()? };
         }
-        Ok(ArbiterRecord { a, b, state, steps_separated, count, points })
+        let link = match self.links_at {
+            Some(at) => self.record::<4>(at, i).u32()?,
+            None => 0,
+        };
+        Ok(ArbiterRecord { a, b, state, steps_separated, count, points, link })
     }
 
     pub(super) fn joint(&self, i: u32) -> Result<JointRecord, Error> {
@@ -410,6 +431,8 @@ pub(super) struct ArbiterRecord {
     pub(super) steps_separated: u32,
     pub(super) count: u8,
     pub(super) points: [PointRecord; 2],
+    /// The chain link (0 when the pair has none).
+    pub(super) link: u32,
 }
 
 /// One contact point of an arbiter as stored: its feature id and its
@@ -422,9 +445,9 @@ pub(super) struct PointRecord {
 }
 
 impl ArbiterRecord {
-    pub(super) fn key(&self) -> (u32, u32) {
+    pub(super) fn key(&self) -> (u32, u32, u32) {
         let (a, b) = (self.a.index(), self.b.index());
-        (a.min(b), a.max(b))
+        (a.min(b), a.max(b), self.link)
     }
 }
 

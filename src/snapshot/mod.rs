@@ -24,7 +24,9 @@
 //! 5. the generator allocator and the force generators;
 //! 6. the arbiters (58 bytes each: the pair, state and touching flag, steps since separation, and
 //!    per contact point its feature id and accumulated normal and friction
-//!    impulses);
+//!    impulses); when an arbiter is for a chain link other than 0, bit 31 of
+//!    their count is set ([`ARBITER_LINKS`]) and the records are followed by
+//!    each arbiter's link (u32);
 //! 7. the joint allocator and the joints (160 bytes each);
 //! 8. the trailer, [`TRAILER`] = 8 bytes: the XXH64 checksum (seed 0) of every
 //!    byte before it.
@@ -54,8 +56,10 @@
 //! exchanging snapshots; [`diff`] then names the object and field.
 
 //! # What is not in it
-//! Polygon paths are static data: the snapshot carries their checksum, and
-//! `restore` refuses a snapshot whose paths differ from the world's. Game hooks —
+//! Polygon paths and chains are static data: the snapshot carries their
+//! checksum (the chains' points folded in when there are any, so a world
+//! without chains hashes as before), and `restore` refuses a snapshot whose
+//! paths or chains differ from the world's. Game hooks —
 //! custom force generators, collision handlers, game constraints, callbacks — are
 //! not state; a snapshot records which generator slots hold a custom generator and
 //! `restore` requires the same slots to hold one. Per-step outputs (the impulses a
@@ -100,7 +104,7 @@ pub const BODY_RECORD: usize = 64;
 /// | offset | bytes | field |
 /// |---|---|---|
 /// | 0 | 1 | shape kind (0 circle, 1 polygon, 2 capsule, 3 segment) |
-/// | 1 | 24 | the shape, zero-padded: circle radius; path handle (index u32, generation u32); capsule's second centre (x, y) and radius (the first centre is the second negated); segment's second end (x, y) (the first is its negation) |
+/// | 1 | 24 | the shape, zero-padded: circle radius; path handle (index u32, generation u32); capsule's second centre (x, y) and radius (the first centre is the second negated); segment's second end (x, y) (the first is its negation); chain (kind 4): first point in the slab (u32), point count (u32), closed (u64, 0 or 1) |
 /// | 25 | 1 | body type and flags (see below) |
 /// | 26 | 8 × 4 | mass, inertia, friction, restitution |
 /// | 58 | 4 + 4 | collision groups, collision level |
@@ -111,6 +115,10 @@ pub const BODY_RECORD: usize = 64;
 pub const PROPS_RECORD: usize = 118;
 /// Bytes of one arbiter record.
 pub const ARBITER_RECORD: usize = 58;
+/// Bit 31 of the arbiter count: the arbiter records are followed by one
+/// chain link (u32) per arbiter. Written only when an arbiter's link is not
+/// 0 (a pair with a chain), so a world without chains encodes as before.
+pub const ARBITER_LINKS: u32 = 1 << 31;
 /// Bytes of one joint record.
 pub const JOINT_RECORD: usize = 160;
 
@@ -261,7 +269,8 @@ impl World<'_> {
 
     /// The longest snapshot this world can ever write: every body slot used, each
     /// body with its own properties, every generator slot holding a generator
-    /// with the most targets, the contact store full and every joint slot used.
+    /// with the most targets, the contact store full (with each arbiter's chain
+    /// link when the world has room for chains) and every joint slot used.
     /// It depends on the capacities only, so a game can allocate its rollback
     /// ring buffer once (`frames × max_snapshot_len()`); [`World::restore`]
     /// accepts the longer buffer.

@@ -10,7 +10,7 @@
 use super::layout::{Alloc, BodyRecord, GeneratorRecord, Layout, StoredGenerator};
 use super::write::{paths_checksum, Props};
 use super::{invalid, NO_LINK, TOUCHING};
-use crate::arbiter::ArbiterState;
+use crate::arbiter::{ArbiterState, MAX_LINK, MAX_STEPS_SEPARATED};
 use crate::body::{BodyHandle, BodyType, Shape};
 use crate::error::Error;
 use crate::force::{Generator, Targets};
@@ -72,6 +72,11 @@ fn check_props(w: &World<'_>, p: &Props) -> Result<(), Error> {
         Shape::Segment(sg) => {
             if Segment::new(sg.point1(), sg.point2()).is_err() {
                 return Err(invalid("segment out of range"));
+            }
+        }
+        Shape::Chain(h) => {
+            if !w.paths.chains.valid(h) || p.body_type != BodyType::Static {
+                return Err(invalid("a body's chain is not in this world"));
             }
         }
     }
@@ -201,7 +206,7 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
     if l.arbiters as usize > w.arbiters.capacity() {
         return Err(Error::SnapshotMismatch { what: "more arbiters than this world holds" });
     }
-    let mut last: Option<(u32, u32)> = None;
+    let mut last: Option<(u32, u32, u32)> = None;
     for i in 0..l.arbiters {
         let a = l.arbiter(i)?;
         let key = a.key();
@@ -209,6 +214,12 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
             return Err(invalid("arbiters out of order"));
         }
         last = Some(key);
+        if a.link != 0 && w.paths.chains.used() == 0 {
+            return Err(invalid("a chain link in a world without chains"));
+        }
+        if a.link > MAX_LINK || a.steps_separated > MAX_STEPS_SEPARATED {
+            return Err(invalid("an arbiter's link or steps since separation out of range"));
+        }
         if !live_body(l, a.a)? || !live_body(l, a.b)? {
             return Err(invalid("an arbiter names a body that is not in the snapshot"));
         }

@@ -2,8 +2,8 @@
 
 use super::hash::Hash64;
 use super::{
-    Part, Sink, ARBITER_RECORD, BODY_RECORD, BULLET, FIXED_ROTATION, HEADER, JOINT_RECORD, LINK_MASK, LIVE,
-    MAGIC, NO_LINK, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, TOUCHING, TRAILER, VERSION,
+    Part, Sink, ARBITER_LINKS, ARBITER_RECORD, BODY_RECORD, BULLET, FIXED_ROTATION, HEADER, JOINT_RECORD,
+    LINK_MASK, LIVE, MAGIC, NO_LINK, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, TOUCHING, TRAILER, VERSION,
 };
 use crate::arena::NO_SLOT;
 use crate::body::{Body, BodyType, CollisionFilter, Shape};
@@ -90,10 +90,11 @@ impl Plan {
         let generators = (0..w.generators.allocator_state().0)
             .map(|i| generator_bytes(w.generators.get_at(i)))
             .fold(0usize, usize::saturating_add);
+        let links = if has_links(w) { w.arbiters.live().len().saturating_mul(4) } else { 0 };
         let len = sections_len(
             props as usize,
             w.bodies.allocator_state().0 as usize,
-            generators,
+            generators.saturating_add(links),
             w.arbiters.live().len(),
             w.joints.allocator_state().0 as usize,
         );
@@ -128,7 +129,10 @@ pub(super) fn max_len(w: &World<'_>) -> usize {
     sections_len(
         bodies,
         bodies,
-        w.generators.capacity().saturating_mul(MAX_GENERATOR_BYTES),
+        // A world with room for chains may write each arbiter's link too.
+        w.generators.capacity().saturating_mul(MAX_GENERATOR_BYTES).saturating_add(
+            if w.paths.chains.capacity() > 0 { w.arbiters.capacity().saturating_mul(4) } else { 0 },
+        ),
         w.arbiters.capacity(),
         w.joints.capacity(),
     )
@@ -249,7 +253,8 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
 
     s.part(Part::Contacts);
     let live = w.arbiters.live();
-    s.u32(live.len() as u32);
+    let links = has_links(w);
+    s.u32(live.len() as u32 | if links { ARBITER_LINKS } else { 0 });
     for a in live {
         let mut rec = Record::<ARBITER_RECORD>::default();
         for h in [a.body_a, a.body_b] {
@@ -257,7 +262,7 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
             rec.u32(h.generation());
         }
         rec.u8(a.state as u8 | if a.touching { TOUCHING } else { 0 });
-        rec.u32(a.steps_separated);
+        rec.u32(a.steps_separated());
         rec.u8(a.count);
         for (k, p) in a.points.iter().enumerate() {
             // Unused point slots are written as zeros so equal states encode equally.
@@ -270,6 +275,11 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
             }
         }
         s.put(&rec.bytes);
+    }
+    if links {
+        for a in live {
+            s.u32(a.link());
+        }
     }
 
     s.part(Part::Allocators);
@@ -295,6 +305,12 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
         s.part(Part::Joints);
         s.put(joint);
     }
+}
+
+/// True when an arbiter is for a chain link other than 0 (the links are
+/// then written after the arbiter records).
+fn has_links(w: &World<'_>) -> bool {
+    w.arbiters.live().iter().any(|a| a.link() != 0)
 }
 
 /// A free-list link in the 30-bit form.
@@ -344,6 +360,13 @@ fn write_props(s: &mut impl Sink, p: &Props) {
         Shape::Segment(sg) => {
             s.u8(3);
             s.vector(sg.point2());
+            s.u64(0);
+        }
+        Shape::Chain(h) => {
+            s.u8(4);
+            s.u32(h.start);
+            s.u32(h.count);
+            s.u64(u64::from(h.closed));
             s.u64(0);
         }
     }
@@ -501,6 +524,14 @@ pub(super) fn paths_checksum(w: &World<'_>) -> u64 {
                 write_path(&mut h, p);
             }
             None => h.u8(0),
+        }
+    }
+    // The chains' points, when there are any (a world without chains keeps
+    // the checksum it had before chains existed).
+    if w.paths.chains.used() > 0 {
+        h.u32(w.paths.chains.used());
+        for p in w.paths.chains.points() {
+            h.vector(p);
         }
     }
     h.finish()

@@ -65,6 +65,9 @@ impl World<'_> {
     }
 
     fn build_body(&self, def: &BodyDef) -> Result<Body, Error> {
+        if matches!(def.shape, Shape::Chain(_)) && def.body_type != BodyType::Static {
+            return Err(Error::InvalidOperation { what: "a chain has no mass: its body must be static" });
+        }
         let (shape, offset) = centred(def.shape);
         let (area, unit_inertia, radius) = self.shape_geometry(shape)?;
         let mut body_type = def.body_type;
@@ -167,6 +170,12 @@ impl World<'_> {
                 // No area: a dynamic segment takes its mass outright (see
                 // `dynamic_mass`), its inertia that of a thin rod.
                 Ok((scalar::ONE, s.rod_unit_inertia(), s.bounding_radius()))
+            }
+            Shape::Chain(h) => {
+                if !self.paths.chains.valid(h) {
+                    return Err(Error::StaleHandle);
+                }
+                Ok((ZERO, ZERO, self.paths.chains.radius(h)))
             }
         }
     }

@@ -37,7 +37,7 @@ pub use crate::limits::{
 
 use crate::arbiter::{Arbiter, ArbiterStore};
 use crate::arena::Arena;
-use crate::body::{Body, BodyHandle};
+use crate::body::{Body, BodyHandle, ShapeStore};
 use crate::collision::{BroadPhase, Index};
 use crate::constraint::{Joint, JointHandle, JointMarker, UserConstraints};
 use crate::error::Error;
@@ -45,7 +45,8 @@ use crate::events::{
     ContactBeginEvent, ContactEndEvent, ContactHitEvent, Events, JointBrokeEvent, SensorEvent,
 };
 use crate::force::{Generator, GeneratorMut, Generators};
-use crate::geometry::PolygonPath;
+use crate::geometry::chain::ChainSlab;
+use crate::geometry::{ChainHandle, ChainPath};
 use crate::handler::{Handler, HandlerTable, PostStepQueue, MAX_POST_STEP_ROUNDS};
 use crate::index::SortAndSweepIndex;
 use crate::math::{Rect, Scalar};
@@ -85,7 +86,8 @@ fn check_slot_capacities(bodies: usize, paths: usize, joints: usize) -> Result<(
 pub struct World<'a> {
     pub(crate) def: WorldDef,
     pub(crate) bodies: Arena<'a, Body>,
-    pub(crate) paths: Arena<'a, PolygonPath>,
+    /// Polygon paths (what this dereferences to) and the chain slab.
+    pub(crate) paths: ShapeStore<'a>,
     pub(crate) generators: Generators<'a>,
     pub(crate) broad_phase: BroadPhase<'a>,
     pub(crate) arbiters: ArbiterStore<'a>,
@@ -138,6 +140,7 @@ impl<'a> World<'a> {
             joints: s.joints.len(),
             post_step_callbacks: s.post_step.len(),
             events: 0,
+            chain_vertices: s.chain_nodes.len(),
         };
         let events = Events::new(
             s.contact_begin,
@@ -151,7 +154,10 @@ impl<'a> World<'a> {
         Ok(Self {
             def,
             bodies: Arena::new(s.bodies).with_tag(tag),
-            paths: Arena::new(s.paths).with_tag(tag),
+            paths: ShapeStore {
+                paths: Arena::new(s.paths).with_tag(tag),
+                chains: ChainSlab::new(s.chain_nodes),
+            },
             generators: Arena::inline().with_tag(tag),
             broad_phase: BroadPhase {
                 index: Index::default(),
@@ -464,18 +470,56 @@ impl<'a> World<'a> {
         self.handlers.set_default(handler)
     }
 
+    /// Copies a chain into the world's chain slab (see
+    /// [`crate::geometry::chain`]) for [`BodyDef::chain`](crate::BodyDef::chain)
+    /// bodies to use; several bodies may share it. The slab is filled in
+    /// order and never freed: chains are level geometry.
+    ///
+    /// # Errors
+    /// [`Error::CapacityFull`] `{ what: "chain vertex" }` when the slab
+    /// ([`Capacities::chain_vertices`]) has fewer free entries than the chain
+    /// has points; the world is unchanged.
+    pub fn add_chain(&mut self, path: ChainPath<'_>) -> Result<ChainHandle, Error> {
+        self.paths.chains.add(&path)
+    }
+
+    /// The points of chain `h` (body-local, m), in order; none for a handle
+    /// this world's slab does not hold.
+    pub fn chain_points(&self, h: ChainHandle) -> impl Iterator<Item = crate::math::Vector2> + '_ {
+        let n = if self.paths.chains.valid(h) { h.points() } else { 0 };
+        self.paths.chains.points().skip(h.start as usize).take(n)
+    }
+
+    /// Link `i` of chain `h` with its ghost vertices (body-local), if the
+    /// chain has it: link `i` runs from point `i` to point `i + 1` (a loop's
+    /// last link back to point 0).
+    #[must_use]
+    pub fn chain_link(&self, h: ChainHandle, i: u32) -> Option<crate::geometry::ChainSegment> {
+        self.paths.chains.link(h, i)
+    }
+
+    /// Chain points in use and the slab's size.
+    #[must_use]
+    pub fn chain_vertices(&self) -> (usize, usize) {
+        (self.paths.chains.used() as usize, self.paths.chains.capacity())
+    }
+
     /// The arbiters (touching or persisting pairs), in canonical pair order.
     pub fn arbiters(&self) -> impl Iterator<Item = &Arbiter> + '_ {
         self.arbiters.live().iter()
     }
 
-    /// The arbiter of two bodies, if they touch or recently touched.
+    /// The arbiter of two bodies, if they touch or recently touched (for a
+    /// body against a chain, the one of the lowest link: see
+    /// [`World::arbiters`] for all of them).
     #[must_use]
     pub fn arbiter(&self, a: BodyHandle, b: BodyHandle) -> Option<&Arbiter> {
         let key = if a.index() <= b.index() { (a.index(), b.index()) } else { (b.index(), a.index()) };
         let live = self.arbiters.live();
-        let i = live.binary_search_by(|arb| arb.key().cmp(&key)).ok()?;
-        live.get(i).filter(|arb| (arb.body_a == a && arb.body_b == b) || (arb.body_a == b && arb.body_b == a))
+        let i = live.partition_point(|arb| arb.pair() < key);
+        live.get(i)
+            .filter(|arb| arb.pair() == key)
+            .filter(|arb| (arb.body_a == a && arb.body_b == b) || (arb.body_a == b && arb.body_b == a))
     }
 
     // ---- events --------------------------------------------------------------

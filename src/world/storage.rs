@@ -16,7 +16,7 @@ use crate::error::Error;
 use crate::events::{
     ContactBeginEvent, ContactEndEvent, ContactHitEvent, JointBrokeEvent, SensorEvent, DEFAULT_EVENTS,
 };
-use crate::geometry::PolygonPath;
+use crate::geometry::{ChainNode, PolygonPath};
 use crate::handler::{PostStepEntry, DEFAULT_POST_STEP_CALLBACKS, EMPTY_POST_STEP};
 use crate::index::Proxy;
 use crate::math::{Rect, Vector2};
@@ -44,6 +44,11 @@ pub struct Capacities {
     /// [`crate::events`] holds this many; more are dropped and counted in
     /// [`StepReport::events_dropped`](crate::StepReport::events_dropped)).
     pub events: usize,
+    /// Points of all chains together ([`World::add_chain`](crate::World::add_chain)):
+    /// a chain of `n` points takes `n`, [`Storage::BYTES_PER_CHAIN_VERTEX`]
+    /// (48) bytes each (the point and one box of its link tree). 0 in
+    /// [`Capacities::for_bodies`]: a world that uses chains sets it.
+    pub chain_vertices: usize,
 }
 
 impl Default for Capacities {
@@ -57,7 +62,9 @@ impl Capacities {
     /// its inline hooks, comes on top): [`Storage::BYTES_PER_BODY`] per body,
     /// [`Storage::BYTES_PER_PATH`] per path, [`Storage::BYTES_PER_CONTACT`] per
     /// contact, [`Storage::BYTES_PER_JOINT`] per joint,
-    /// [`Storage::BYTES_PER_CALLBACK`] per queued callback; saturating.
+    /// [`Storage::BYTES_PER_CALLBACK`] per queued callback,
+    /// [`Storage::BYTES_PER_EVENT`] per event,
+    /// [`Storage::BYTES_PER_CHAIN_VERTEX`] per chain point; saturating.
     #[must_use]
     pub const fn storage_bytes(&self) -> usize {
         match self.checked_storage_bytes() {
@@ -76,6 +83,7 @@ impl Capacities {
             self.joints.checked_mul(Storage::BYTES_PER_JOINT),
             self.post_step_callbacks.checked_mul(Storage::BYTES_PER_CALLBACK),
             self.events.checked_mul(Storage::BYTES_PER_EVENT),
+            self.chain_vertices.checked_mul(Storage::BYTES_PER_CHAIN_VERTEX),
         ];
         let mut total = 0usize;
         let mut i = 0;
@@ -94,7 +102,7 @@ impl Capacities {
 
     /// Room for `bodies` bodies, each with its own polygon path, 4 contacts and
     /// 2 joints per body, and one queued post-step callback per body (at least
-    /// [`DEFAULT_POST_STEP_CALLBACKS`]).
+    /// [`DEFAULT_POST_STEP_CALLBACKS`]); no chain points.
     #[must_use]
     pub fn for_bodies(bodies: usize) -> Self {
         Self {
@@ -104,6 +112,7 @@ impl Capacities {
             joints: bodies.saturating_mul(2),
             post_step_callbacks: bodies.max(DEFAULT_POST_STEP_CALLBACKS),
             events: bodies.max(DEFAULT_EVENTS),
+            chain_vertices: 0,
         }
     }
 }
@@ -154,6 +163,8 @@ pub struct Storage<'a> {
     pub(crate) sensor_begin: ManagedSlice<'a, SensorEvent>,
     pub(crate) sensor_end: ManagedSlice<'a, SensorEvent>,
     pub(crate) joint_broke: ManagedSlice<'a, JointBrokeEvent>,
+    /// The chain slab; its length is the chain-point capacity.
+    pub(crate) chain_nodes: ManagedSlice<'a, ChainNode>,
 }
 
 impl Storage<'_> {
@@ -166,6 +177,9 @@ impl Storage<'_> {
         + size_of::<u32>()
         + size_of::<SolverBody>()
         + size_of::<BodyLanes>();
+    /// Bytes per chain point: the point and one box of the chain's link tree
+    /// (a chain of `n` links costs about `n` of these).
+    pub const BYTES_PER_CHAIN_VERTEX: usize = size_of::<ChainNode>();
     /// Bytes per polygon path slot.
     pub const BYTES_PER_PATH: usize = size_of::<Slot<PolygonPath>>();
     /// Bytes per contact slot: two arbiters (this step's and the next's), a
@@ -246,6 +260,7 @@ impl Storage<'_> {
             sensor_begin: ManagedSlice::Owned(filled(c.events, "event", SensorEvent::default)?),
             sensor_end: ManagedSlice::Owned(filled(c.events, "event", SensorEvent::default)?),
             joint_broke: ManagedSlice::Owned(filled(c.events, "event", JointBrokeEvent::default)?),
+            chain_nodes: ManagedSlice::Owned(filled(c.chain_vertices, "chain vertex", || ChainNode::EMPTY)?),
         })
     }
 }
@@ -267,7 +282,9 @@ const EMPTY_SENSOR: SensorEvent = SensorEvent { sensor: BodyHandle::NULL, visito
 /// multiple of 8), `JOINTS`
 /// built-in joints (default 16), `CALLBACKS` queued post-step callbacks
 /// (default [`DEFAULT_POST_STEP_CALLBACKS`], 64), `EVENTS` events of each kind
-/// a step reports (default [`DEFAULT_EVENTS`], 64; see [`crate::events`]). `new` is `const`, so the
+/// a step reports (default [`DEFAULT_EVENTS`], 64; see [`crate::events`]),
+/// `CHAIN_VERTICES` chain points (default 0; see
+/// [`World::add_chain`](crate::World::add_chain)). `new` is `const`, so the
 /// buffers can be a `static` (e.g. in a `static_cell::StaticCell`) or a local.
 pub struct WorldBuffers<
     const BODIES: usize,
@@ -275,6 +292,7 @@ pub struct WorldBuffers<
     const JOINTS: usize = 16,
     const CALLBACKS: usize = DEFAULT_POST_STEP_CALLBACKS,
     const EVENTS: usize = DEFAULT_EVENTS,
+    const CHAIN_VERTICES: usize = 0,
 > {
     bodies: [Slot<Body>; BODIES],
     paths: [Slot<PolygonPath>; BODIES],
@@ -298,6 +316,7 @@ pub struct WorldBuffers<
     sensor_begin: [SensorEvent; EVENTS],
     sensor_end: [SensorEvent; EVENTS],
     joint_broke: [JointBrokeEvent; EVENTS],
+    chain_nodes: [ChainNode; CHAIN_VERTICES],
 }
 
 impl<
@@ -306,7 +325,8 @@ impl<
         const JOINTS: usize,
         const CALLBACKS: usize,
         const EVENTS: usize,
-    > WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS, EVENTS>
+        const CHAIN_VERTICES: usize,
+    > WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS, EVENTS, CHAIN_VERTICES>
 {
     /// Empty buffers.
     ///
@@ -339,6 +359,7 @@ impl<
             sensor_begin: [EMPTY_SENSOR; EVENTS],
             sensor_end: [EMPTY_SENSOR; EVENTS],
             joint_broke: [JointBrokeEvent::EMPTY; EVENTS],
+            chain_nodes: [ChainNode::EMPTY; CHAIN_VERTICES],
         }
     }
 
@@ -367,6 +388,7 @@ impl<
             sensor_begin: ManagedSlice::Borrowed(&mut self.sensor_begin[..]),
             sensor_end: ManagedSlice::Borrowed(&mut self.sensor_end[..]),
             joint_broke: ManagedSlice::Borrowed(&mut self.joint_broke[..]),
+            chain_nodes: ManagedSlice::Borrowed(&mut self.chain_nodes[..]),
         }
     }
 }
@@ -377,7 +399,8 @@ impl<
         const JOINTS: usize,
         const CALLBACKS: usize,
         const EVENTS: usize,
-    > Default for WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS, EVENTS>
+        const CHAIN_VERTICES: usize,
+    > Default for WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS, EVENTS, CHAIN_VERTICES>
 {
     fn default() -> Self {
         Self::new()

@@ -492,6 +492,17 @@ impl Testbed {
                     rec[0] = 3.0;
                     points(&mut [s.point1(), s.point2()].into_iter(), &mut rec);
                 }
+                // A chain: one segment record per link.
+                Shape::Chain(c) => {
+                    rec[0] = 3.0;
+                    for i in 0..c.links() as u32 {
+                        let Some(link) = w.chain_link(c, i) else { break };
+                        let sg = link.segment();
+                        points(&mut [sg.point1(), sg.point2()].into_iter(), &mut rec);
+                        out.extend_from_slice(&rec);
+                    }
+                    continue;
+                }
             }
             out.extend_from_slice(&rec);
         }

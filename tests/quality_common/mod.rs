@@ -26,7 +26,15 @@ pub fn world_with_contacts(bodies: usize, contacts: usize, gravity: bool) -> Wor
     let bounds = Rect::from_corners(v(-1000.0, -1000.0), v(1000.0, 1000.0));
     let mut w = World::with_capacities(
         WorldDef::with_bounds(bounds),
-        Capacities { bodies, paths: 8, contacts, joints: 0, post_step_callbacks: 64, events: 64 },
+        Capacities {
+            bodies,
+            paths: 8,
+            contacts,
+            joints: 0,
+            post_step_callbacks: 64,
+            events: 64,
+            chain_vertices: 0,
+        },
     )
     .expect("world");
     if gravity {

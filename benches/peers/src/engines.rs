@@ -108,6 +108,7 @@ pub mod ar {
             joints: scene.joints.len().max(1),
             post_step_callbacks: 64,
             events: 64,
+            chain_vertices: 0,
         }
     }
 
