@@ -79,6 +79,15 @@ impl Joint {
 }
 
 impl Joint {
+    /// A target joint's world target point (`None` for other kinds); see
+    /// [`World::set_joint_target`](crate::World::set_joint_target).
+    #[must_use]
+    pub fn target(&self) -> Option<Vector2> {
+        matches!(self.def.kind, JointKind::Target { .. }).then_some(self.def.anchor_b)
+    }
+}
+
+impl Joint {
     pub(crate) fn new(def: JointDef, a: &Body, b: &Body) -> Self {
         Self::restored(def, a.rotation.inv_mul(b.rotation))
     }
@@ -136,6 +145,8 @@ impl Joint {
             }),
             ..row
         };
+        let mut soft = soft;
+        let mut max_impulse = None;
         let (kind, motor, limits) = match self.def.kind {
             JointKind::Spring { stiffness, rest_length } => return spring(stiffness, ZERO, rest_length),
             JointKind::DampedSpring { stiffness, damping, rest_length } => {
@@ -147,6 +158,13 @@ impl Joint {
                 (ConstraintKind::Pivot { limits: limits.is_some(), motor: motor.is_some() }, motor, limits)
             }
             JointKind::Weld => (ConstraintKind::Weld, None, None),
+            JointKind::Target { hertz, damping_ratio, max_force } => {
+                // Its own spring, discretised for the sub-step, in place of the
+                // joints' stiff position correction.
+                soft = Softness::new(hertz, damping_ratio, h);
+                max_impulse = Some(max_force * h);
+                (ConstraintKind::Target, None, None)
+            }
         };
         let motor = motor.map(|m| {
             let max = match m.max_torque {
@@ -160,10 +178,14 @@ impl Joint {
             inv_inertia: [ia, ib],
             anchors,
             world_point,
-            point: matches!(kind, ConstraintKind::Pivot { .. } | ConstraintKind::Weld),
+            point: matches!(
+                kind,
+                ConstraintKind::Pivot { .. } | ConstraintKind::Weld | ConstraintKind::Target
+            ),
             angular: matches!(kind, ConstraintKind::Weld) || motor.is_some() || limits.is_some(),
             motor,
             limits,
+            max_impulse,
         };
         let angular = [self.angular_impulse, self.motor_impulse, self.limit_impulse];
         let lanes = JointLanes::prepare(&masses, sa, sb, soft, inv_h, self.impulse, angular);
@@ -190,6 +212,11 @@ impl Joint {
                     ConstraintKind::Rod { .. } | ConstraintKind::Rope { .. } => {
                         if linear {
                             self.impulse.x = c.lanes.linear_impulse().x;
+                        }
+                    }
+                    ConstraintKind::Target => {
+                        if linear {
+                            self.impulse = c.lanes.linear_impulse();
                         }
                     }
                     ConstraintKind::Pivot { .. } | ConstraintKind::Weld => {
