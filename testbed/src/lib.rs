@@ -725,3 +725,112 @@ fn step_frame(running: &mut scenes::Running, frame: u32) -> Result<Option<String
     running.world_mut().step(dt())?;
     Ok(note)
 }
+
+/// One action of a scripted input sequence: what the page's mouse and
+/// controls do, as data, so the native build and the page can play the same
+/// sequence and compare hashes (coordinates in metres).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Action {
+    /// Step this many frames.
+    Step(u32),
+    /// Press on (x, y): take hold of the body there.
+    DragBegin(f64, f64),
+    /// Move the mouse to (x, y).
+    DragMove(f64, f64),
+    /// Release.
+    DragEnd,
+    /// Spawn a ball (true) or a box at (x, y).
+    Spawn(bool, f64, f64),
+    /// Change the sub-step count.
+    Substeps(u32),
+}
+
+/// A scripted input sequence on a scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Script {
+    /// The scene's name.
+    pub scene: &'static str,
+    /// The actions, in order.
+    pub actions: Vec<Action>,
+}
+
+/// The scripted drag the browser check plays and compares with the native
+/// build: on pyramid_20, take the top box, lift it slowly for 40 frames, go
+/// to 8 sub-steps, sweep it right fast and let go (a throw), spawn a ball,
+/// back to 4 sub-steps. Coordinates are simple sums of f64, printed in the
+/// page's info as the shortest decimal that reads back to the same f64.
+pub fn drag_script() -> Script {
+    let mut a = vec![Action::Step(30), Action::DragBegin(0.0, 19.5)];
+    for k in 1..=40 {
+        let k = f64::from(k);
+        a.push(Action::DragMove(-0.1 * k, 19.5 + 0.12 * k));
+        a.push(Action::Step(1));
+    }
+    a.push(Action::Substeps(8));
+    for k in 1..=15 {
+        a.push(Action::DragMove(-4.0 + 0.6 * f64::from(k), 24.3));
+        a.push(Action::Step(1));
+    }
+    a.extend_from_slice(&[
+        Action::DragEnd,
+        Action::Spawn(true, 5.0, 12.0),
+        Action::Step(60),
+        Action::Substeps(4),
+        Action::Step(30),
+    ]);
+    Script { scene: "pyramid_20", actions: a }
+}
+
+impl Script {
+    /// The script as JSON: `{"scene":…,"actions":[["step",30],["begin",x,y],
+    /// ["move",x,y],["end"],["spawn",0|1,x,y],["substeps",n],…]}`.
+    pub fn to_json(&self) -> String {
+        let actions: Vec<String> = self
+            .actions
+            .iter()
+            .map(|a| match *a {
+                Action::Step(n) => format!("[\"step\",{n}]"),
+                Action::DragBegin(x, y) => format!("[\"begin\",{x},{y}]"),
+                Action::DragMove(x, y) => format!("[\"move\",{x},{y}]"),
+                Action::DragEnd => "[\"end\"]".to_string(),
+                Action::Spawn(ball, x, y) => format!("[\"spawn\",{},{x},{y}]", u8::from(ball)),
+                Action::Substeps(n) => format!("[\"substeps\",{n}]"),
+            })
+            .collect();
+        format!("{{\"scene\":\"{}\",\"actions\":[{}]}}", self.scene, actions.join(","))
+    }
+}
+
+impl Testbed {
+    /// Plays one scripted action as the page's controls would.
+    ///
+    /// # Errors
+    /// What the control fails with.
+    pub fn play(&mut self, action: Action) -> Result<(), Fail> {
+        match action {
+            Action::Step(n) => (0..n).try_for_each(|_| self.step()),
+            Action::DragBegin(x, y) => self.drag_begin(x, y),
+            Action::DragMove(x, y) => self.drag_move(x, y),
+            Action::DragEnd => {
+                self.drag_end();
+                Ok(())
+            }
+            Action::Spawn(ball, x, y) => self.spawn(ball, x, y),
+            Action::Substeps(n) => self.set_substeps(n),
+        }
+    }
+
+    /// Loads the script's scene at 4 sub-steps and plays it.
+    ///
+    /// # Errors
+    /// [`E_NO_SCENE`] or what an action fails with.
+    pub fn run_script(script: &Script) -> Result<Self, Fail> {
+        let index = Self::scene_index(script.scene)
+            .ok_or_else(|| Fail::new(E_NO_SCENE, format!("no scene named {}", script.scene)))?;
+        let mut t = Self::new(index, 4)?;
+        for a in &script.actions {
+            t.play(*a)?;
+        }
+        Ok(t)
+    }
+}
