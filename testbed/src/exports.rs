@@ -40,9 +40,16 @@ fn with<R>(f: impl FnOnce(&mut State) -> R) -> R {
 /// Runs `f` on the loaded testbed; a failure becomes its (negative) code and
 /// its message the error text.
 fn on_testbed(f: impl FnOnce(&mut Testbed) -> Result<i32, Fail>) -> i32 {
+    on_loaded(|t, _, _| f(t))
+}
+
+/// [`on_testbed`], with the text buffer and the last rollback to write too.
+fn on_loaded(
+    f: impl FnOnce(&mut Testbed, &mut String, &mut Option<crate::Rollback>) -> Result<i32, Fail>,
+) -> i32 {
     with(|s| {
         let r = match s.testbed.as_mut() {
-            Some(t) => f(t),
+            Some(t) => f(t, &mut s.text, &mut s.last_rollback),
             None => Err(Fail { code: E_NOT_LOADED, message: "no scene loaded".into() }),
         };
         match r {
@@ -263,18 +270,14 @@ pub extern "C" fn tb_substeps() -> i32 {
 /// (totals since loading, the last few events oldest first).
 #[no_mangle]
 pub extern "C" fn tb_sensor_events() -> i32 {
-    with(|s| {
-        let Some(t) = s.testbed.as_ref() else {
-            s.error = "no scene loaded".into();
-            return E_NOT_LOADED;
-        };
+    on_loaded(|t, text, _| {
         let [begin, end] = t.sensor_totals();
         let log: Vec<String> = t
             .sensor_log()
             .map(|n| format!("[{},{},{},{}]", n.frame, u8::from(n.begin), n.sensor, n.visitor))
             .collect();
-        s.text = format!("{{\"begin\":{begin},\"end\":{end},\"log\":[{}]}}", log.join(","));
-        s.text.len() as i32
+        *text = format!("{{\"begin\":{begin},\"end\":{end},\"log\":[{}]}}", log.join(","));
+        Ok(text.len() as i32)
     })
 }
 
@@ -283,21 +286,10 @@ pub extern "C" fn tb_sensor_events() -> i32 {
 /// if the hash came back different.
 #[no_mangle]
 pub extern "C" fn tb_rollback() -> i32 {
-    with(|s| {
-        let Some(t) = s.testbed.as_mut() else {
-            s.error = "no scene loaded".into();
-            return E_NOT_LOADED;
-        };
-        match t.rollback() {
-            Ok(r) => {
-                s.last_rollback = Some(r);
-                r.frames as i32
-            }
-            Err(e) => {
-                s.error = e.message;
-                e.code
-            }
-        }
+    on_loaded(|t, _, last| {
+        let r = t.rollback()?;
+        *last = Some(r);
+        Ok(r.frames as i32)
     })
 }
 
