@@ -280,3 +280,52 @@ fn set_substeps_is_range_checked_in_the_hash_and_rolled_back_by_restore() {
     }
     assert_ne!(w.state_hash(), on);
 }
+
+#[test]
+fn a_snapshot_with_a_bad_target_joint_record_is_rejected_even_with_a_valid_checksum() {
+    use arphysics::snapshot::TRAILER;
+    use twox_hash::XxHash64;
+    let mut w = world(true);
+    let (_, j) = dragged(&mut w, 2.0, v(3.0, 0.0), v(4.0, 1.0), target(3.0, 0.5, 60.0));
+    for _ in 0..10 {
+        w.step(s(DT)).expect("step");
+    }
+    let mut buf = vec![0u8; w.snapshot_len()];
+    let n = w.snapshot(&mut buf).expect("snapshot");
+    buf.truncate(n);
+    let before = w.state_hash();
+    // The kind's parameters as written: tag 6, then hertz, damping ratio and
+    // force limit as raw little-endian bits.
+    let mut params = vec![6u8];
+    for x in [3.0, 0.5, 60.0] {
+        params.extend_from_slice(&s(x).to_bits().to_le_bytes());
+    }
+    let at = buf.windows(params.len()).position(|win| win == params.as_slice()).expect("the target joint's record");
+    let reseal = |b: &mut Vec<u8>| {
+        let sum = XxHash64::oneshot(0, &b[..n - TRAILER]);
+        b[n - TRAILER..].copy_from_slice(&sum.to_le_bytes());
+    };
+    let mut cases = Vec::new();
+    // Hertz 0, a negative damping ratio, a negative force limit, an unknown kind.
+    for (offset, bytes) in [
+        (1, s(0.0).to_bits().to_le_bytes().to_vec()),
+        (9, s(-1.0).to_bits().to_le_bytes().to_vec()),
+        (17, s(-1.0).to_bits().to_le_bytes().to_vec()),
+        (0, vec![7u8]),
+    ] {
+        let mut bad = buf.clone();
+        bad[at + offset..at + offset + bytes.len()].copy_from_slice(&bytes);
+        reseal(&mut bad);
+        cases.push(bad);
+    }
+    for bad in &cases {
+        let r = w.restore(bad);
+        assert!(matches!(r, Err(Error::InvalidSnapshot { .. })), "{r:?}");
+        assert_eq!(w.state_hash(), before, "a rejected snapshot changed the world");
+    }
+    // The untouched one, resealed the same way, restores.
+    let mut good = buf.clone();
+    reseal(&mut good);
+    w.restore(&good).expect("restores");
+    assert_eq!(w.joint_target(j), Ok(v(4.0, 1.0)));
+}
