@@ -300,7 +300,10 @@ fn a_snapshot_with_a_bad_target_joint_record_is_rejected_even_with_a_valid_check
     for x in [3.0, 0.5, 60.0] {
         params.extend_from_slice(&s(x).to_bits().to_le_bytes());
     }
-    let at = buf.windows(params.len()).position(|win| win == params.as_slice()).expect("the target joint's record");
+    let at = buf
+        .windows(params.len())
+        .position(|win| win == params.as_slice())
+        .expect("the target joint's record");
     let reseal = |b: &mut Vec<u8>| {
         let sum = XxHash64::oneshot(0, &b[..n - TRAILER]);
         b[n - TRAILER..].copy_from_slice(&sum.to_le_bytes());

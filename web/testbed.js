@@ -194,8 +194,8 @@ function draw() {
   for (let i = 0; i < count; i++) {
     const o = i * stride;
     const kind = d[o], flags = d[o + 1], x = d[o + 2], y = d[o + 3], a = d[o + 4], r = d[o + 5], n = d[o + 6];
-    const isStatic = flags & 1, held = flags & 4;
-    const fill = isStatic ? '#9aa0a6' : (flags & 2) ? '#6cc4a1' : FILL[kind] || '#ccc';
+    const isStatic = flags & 1, held = flags & 4, sensor = flags & 8;
+    const fill = sensor ? 'rgba(79, 157, 217, 0.25)' : isStatic ? '#9aa0a6' : (flags & 2) ? '#6cc4a1' : FILL[kind] || '#ccc';
     ctx.fillStyle = held ? '#e8505b' : fill;
     ctx.strokeStyle = '#333';
     if (kind === 0) {

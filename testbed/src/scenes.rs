@@ -283,13 +283,13 @@ fn joints() -> Result<World<'static>, Error> {
     let block = w.add_path(PolygonPath::rectangle(cm(80), cm(80))?)?;
     let pivot = |limits| JointKind::Pivot { limits, motor: None };
     let limits = Some((-demo::cm(52), demo::cm(52)));
-    // The chain: planks 1 m long, joined end to end, from (−12, 16) sideways.
+    // The chain: planks 1 m long, joined end to end, from (−9, 16) sideways.
     let mut prev = None;
     for k in 0..5 {
-        let b = w.add_body(BodyDef::polygon(plank).position(at(-1150 + 100 * k, 1600)))?;
+        let b = w.add_body(BodyDef::polygon(plank).position(at(-850 + 100 * k, 1600)))?;
         let (near, far) = (at(-50, 0), at(50, 0));
         let j = match prev {
-            None => JointDef::to_world(b, near, at(-1200, 1600), pivot(None)),
+            None => JointDef::to_world(b, near, at(-900, 1600), pivot(None)),
             Some(p) => JointDef::new(p, far, b, near, pivot(limits)),
         };
         w.add_joint(j)?;
@@ -335,8 +335,8 @@ fn joints() -> Result<World<'static>, Error> {
 
 /// Two sensor zones: a 6 × 2 m one in mid-air that a column of balls falls
 /// through (a begin and an end event each) and a 4 × 1.5 m one on the floor
-/// where some of them settle (a begin, no end); boxes on a ramp slide in
-/// too.
+/// where some of them settle (a begin, no end); slippery boxes slide down a
+/// ramp towards it.
 fn sensors() -> Result<World<'static>, Error> {
     use demo::{at, cm};
     let mut w = feature_world(64, 0)?;
@@ -352,7 +352,8 @@ fn sensors() -> Result<World<'static>, Error> {
     }
     let block = w.add_path(PolygonPath::rectangle(cm(60), cm(60))?)?;
     for k in 0..4 {
-        w.add_body(BodyDef::polygon(block).position(at(-1000 + 90 * k, 760 - 40 * k)).angle(-cm(40)))?;
+        let def = BodyDef::polygon(block).position(at(-1000 + 90 * k, 760 - 40 * k)).angle(-cm(40));
+        w.add_body(def.friction(cm(5)))?;
     }
     Ok(w)
 }
