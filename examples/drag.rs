@@ -4,8 +4,8 @@
 //! flies and lands. The joint is a 5 Hz spring (damping ratio 0.7) with a
 //! force limit of 1,000 N per kilogram; the game moves its target each frame
 //! with `World::set_joint_target` and removes the joint to let go. (Held off
-//! its centre a body swings about the held point like a pendulum: the joint
-//! has no angular damping of its own, unlike Box2D v3's mouse joint.)
+//! its centre a body swings about the held point like a pendulum; the joint's
+//! spin damping, Box2D v3's, settles it over a few seconds.)
 //!
 //! Prints the crate's track and checks its own run: the point held hangs
 //! g/ω² below the cursor, the crate leaves the hand at the cursor's speed, and

@@ -28,7 +28,7 @@
 //! * a target joint is the pivot's point constraint to a world point with its
 //!   own spring (`hertz`, `damping_ratio`) in place of that correction, soft in
 //!   the relax sweep too, its accumulated impulse clamped by length so its
-//!   force stays within `max_force`.
+//!   force stays within `max_force`, and a soft spin damping (Box2D v3's).
 //!
 //! The sub-steps work on a row per joint in a dense scratch array of the
 //! solver (`row.rs`), built at prepare in joint-slot order: the joints
@@ -68,7 +68,10 @@ mod weld;
 
 pub(crate) use def::{validate, validate_params};
 pub use def::{JointDef, JointKind, MaxTorque, Motor};
-pub use joint::{Joint, JointHandle, JointMarker, JOINT_DAMPING_RATIO, JOINT_HERTZ};
+pub use joint::{
+    Joint, JointHandle, JointMarker, JOINT_DAMPING_RATIO, JOINT_HERTZ, TARGET_SPIN_DAMPING_RATIO,
+    TARGET_SPIN_HERTZ,
+};
 pub(crate) use maths::ground;
 pub(crate) use row::JointRow;
 pub use user::{Constraint, ConstraintHandle, ConstraintMarker, MAX_USER_CONSTRAINTS};

@@ -127,7 +127,10 @@ impl ConstraintRow {
                 l.warm_point(la, lb);
                 l.warm_weld(la, lb);
             }
-            ConstraintKind::Target => l.warm_point(la, lb),
+            ConstraintKind::Target => {
+                l.warm_point(la, lb);
+                l.warm_weld(la, lb);
+            }
         }
     }
 

@@ -33,6 +33,8 @@
 //!   integer square root (rounded up) of the exact 64-bit sum of squares, so
 //!   the clamp is the same on every target and never overshoots the limit.
 //!   Its softness is its own spring's, not the joints' position correction.
+//!   Its spin damping (Box2D v3's: a soft angular row with no bias, 0.5 Hz,
+//!   damping ratio 0.1) keeps its scales in the pivot's `limits` field.
 //!
 //! The anchors' arms follow the bodies' rotation: once per sub-step, after the
 //! positions are integrated (and at prepare for the first sub-step), each
@@ -358,7 +360,8 @@ pub(crate) struct JointLanes {
     axis: Axis,
     /// Relative angle (rad, Q4.28), when measured.
     angle: i32,
-    /// A pivot's limits (rad, Q4.28): lower, upper.
+    /// A pivot's limits (rad, Q4.28): lower, upper; for a target joint the
+    /// mass and impulse scales of its spin damping (Q2.30).
     limits: [i32; 2],
     /// A pivot motor's target speed (rad/s, Q16.16) and largest accumulated
     /// impulse (Q16.16); for a target joint (no motor), [0, its largest |λ̂|
@@ -405,6 +408,8 @@ pub(crate) struct JointMasses {
     /// A target joint's largest linear impulse per sub-step (N·s): its
     /// accumulated point impulse is clamped to it by length.
     pub(crate) max_impulse: Option<Scalar>,
+    /// A target joint's spin damping (a soft row with no bias).
+    pub(crate) spin_damping: Option<Softness>,
 }
 
 impl JointLanes {
@@ -465,6 +470,12 @@ impl JointLanes {
         }
         let v = |x: Scalar| from_scalar(x, FV, i64::from(LAMBDA_MAX >> FV));
         j.lambda = [v(impulse.x * s), v(impulse.y * s)];
+        if let Some(d) = m.spin_damping {
+            // A target joint has no limits: the field holds the damping's
+            // scales (Q2.30) instead, so the row stays the size it was.
+            let d = LaneSoft::new(d);
+            j.limits = [d.mass_scale, d.impulse_scale];
+        }
         if let Some(max) = m.max_impulse {
             // Rounded half up like every value entering the lanes; the clamp
             // by length below keeps |λ̂| within it.
@@ -703,8 +714,26 @@ impl JointLanes {
         if !self.angular {
             return;
         }
-        let rate = self.relative_spin(la, lb);
         let (b, sm, si) = self.soft.row::<{ FT + FQ - FV }>(self.angle, bias);
+        self.angular_row(la, lb, b, sm, si);
+    }
+
+    /// A target joint's spin damping: a soft row with no bias driving the
+    /// relative spin to zero, with the scales prepare put in `limits` (a
+    /// target joint has no limits).
+    #[inline]
+    pub(crate) fn solve_spin_damping(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes) {
+        if !self.angular {
+            return;
+        }
+        let [sm, si] = self.limits;
+        self.angular_row(la, lb, 0, sm, si);
+    }
+
+    /// The main angular row: λ̂ += −s_m·(ω_B − ω_A + b) − s_i·λ̂.
+    #[inline(always)]
+    fn angular_row(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes, b: i64, sm: i32, si: i32) {
+        let rate = self.relative_spin(la, lb);
         let old = self.ang[0];
         let delta = -scale(rate + b, sm) - wide::<FU>(si, old);
         let new = narrow(i64::from(old) + delta, i64::from(LAMBDA_MAX));
