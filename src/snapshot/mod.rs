@@ -25,7 +25,12 @@
 //! 6. the arbiters (58 bytes each: the pair, state and touching flag, steps since separation, and
 //!    per contact point its feature id and accumulated normal and friction
 //!    impulses);
-//! 7. the joint allocator and the joints (160 bytes each);
+//! 7. the joint allocator and the joints (160 bytes each: the definition with
+//!    its kind as a tag, 0 spring to 5 weld and 6 the target joint, whose
+//!    target is the definition's world point, then the reference angle and
+//!    the accumulated impulses; the target joint's tag fits the same record,
+//!    so the format version did not change for it: a build without it
+//!    rejects such a snapshot as an unknown joint kind);
 //! 8. the trailer, [`TRAILER`] = 8 bytes: the XXH64 checksum (seed 0) of every
 //!    byte before it.
 //!
