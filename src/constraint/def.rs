@@ -79,8 +79,10 @@ pub enum JointKind {
     /// m·ω², ω = 2π·`hertz`), whose force never exceeds `max_force`. Only with
     /// [`JointDef::to_world`]: the target is the definition's world point, moved
     /// by [`World::set_joint_target`](crate::World::set_joint_target). What a
-    /// game drags a body with (the testbed's mouse); the body keeps turning
-    /// freely about the anchor.
+    /// game drags a body with (the testbed's mouse). The body turns about the
+    /// anchor, its spin softly damped as by Box2D v3's mouse joint
+    /// ([`TARGET_SPIN_HERTZ`](crate::constraint::TARGET_SPIN_HERTZ)); removing
+    /// the joint lets it fly on with its speed (a throw).
     Target {
         /// Frequency of the spring, Hz, in (0, [`MAX_TARGET_HERTZ`](crate::limits::MAX_TARGET_HERTZ)] (1,000).
         hertz: Scalar,

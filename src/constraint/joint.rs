@@ -84,9 +84,7 @@ impl Joint {
         }
         Ok(())
     }
-}
 
-impl Joint {
     /// A target joint's world target point (`None` for other kinds); see
     /// [`World::set_joint_target`](crate::World::set_joint_target).
     #[must_use]
