@@ -2,34 +2,17 @@
 //! damped approach, the force limit, the sag under gravity; snapshots
 //! mid-drag; bad input; and `World::set_substeps`.
 
-use arphysics::{
-    BodyDef, BodyHandle, Capacities, Error, GravityForceGenerator, JointDef, JointHandle, JointKind, Rect,
-    Scalar, Vector2, World, WorldDef,
-};
+use arphysics::{BodyDef, BodyHandle, Capacities, Error, JointDef, JointHandle, JointKind, Vector2, World};
 
-fn s(x: f64) -> Scalar {
-    Scalar::from_num(x)
-}
+mod common;
 
-fn v(x: f64, y: f64) -> Vector2 {
-    Vector2::new(s(x), s(y))
-}
-
-fn f(x: Scalar) -> f64 {
-    x.to_num::<f64>()
-}
+use common::{f, s, v};
 
 const DT: f64 = 1.0 / 60.0;
 const TAU: f64 = std::f64::consts::TAU;
 
 fn world(gravity: bool) -> World<'static> {
-    let bounds = Rect::from_corners(v(-200.0, -200.0), v(200.0, 200.0));
-    let mut w =
-        World::with_capacities(WorldDef::with_bounds(bounds), Capacities::for_bodies(64)).expect("world");
-    if gravity {
-        w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0))).expect("g");
-    }
-    w
+    common::world_with(200.0, 200.0, Capacities::for_bodies(64), gravity)
 }
 
 fn target(hertz: f64, damping_ratio: f64, max_force: f64) -> JointKind {
