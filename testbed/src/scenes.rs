@@ -257,16 +257,7 @@ fn shapes() -> Result<World<'static>, Error> {
 fn feature_world(bodies: usize, joints: usize) -> Result<World<'static>, Error> {
     use demo::{at, cm};
     let bounds = Rect::from_corners(Vector2::from_int(-60, -20), Vector2::from_int(60, 80));
-    let caps = arphysics::Capacities {
-        bodies,
-        paths: 16,
-        contacts: bodies * 4,
-        joints,
-        post_step_callbacks: 64,
-        events: 64,
-        chain_vertices: 0,
-    };
-    let mut w = crate::scene_world(bounds, caps)?;
+    let mut w = crate::scene_world(bounds, bench::capacities(bodies, joints))?;
     w.add_force_generator(GravityForceGenerator::new(Vector2::from_int(0, -10)))?;
     let floor = w.add_path(PolygonPath::rectangle(cm(3000), cm(100))?)?;
     w.add_body(BodyDef::polygon(floor).position(at(0, -50)).static_body())?;
