@@ -202,15 +202,18 @@ fn point_mass(
 /// squares (|v| components ≤ 2³⁰ after `narrow`, so the sum fits), and each
 /// component is scaled by max/len rounding towards zero, so the result is
 /// never longer than `max` and the same on every target.
+///
+/// A vector within `max` is returned before the square root: with `max` a
+/// whole number, ⌈√sq⌉ ≤ max exactly when sq ≤ max² (at most 2⁶², exact).
 fn clamp_length(v: [i32; 2], max: i32) -> [i32; 2] {
     let [x, y] = v.map(i64::from);
     let sq = (x * x + y * y).unsigned_abs();
-    let floor = sq.isqrt();
-    let len = (if floor * floor < sq { floor + 1 } else { floor }) as i64;
     let max = i64::from(max.max(0));
-    if len <= max {
+    if sq <= (max * max).unsigned_abs() {
         return v;
     }
+    let floor = sq.isqrt();
+    let len = (if floor * floor < sq { floor + 1 } else { floor }) as i64;
     // len > max ≥ 0, and |x|·max ≤ 2³⁰·2³⁰.
     [(x * max / len) as i32, (y * max / len) as i32]
 }
@@ -820,5 +823,69 @@ impl JointLanes {
             lanes::wide_to_scalar(self.sum[0]) * self.inv_s,
             lanes::wide_to_scalar(self.sum[1]) * self.inv_s,
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::clamp_length;
+
+    /// The definition: scaled by max/⌈|v|⌉ (towards zero) when ⌈|v|⌉ > max.
+    fn by_definition(v: [i32; 2], max: i32) -> [i32; 2] {
+        let [x, y] = v.map(i64::from);
+        let sq = (x * x + y * y).unsigned_abs();
+        let floor = sq.isqrt();
+        let len = (if floor * floor < sq { floor + 1 } else { floor }) as i64;
+        let max = i64::from(max.max(0));
+        if len <= max {
+            return v;
+        }
+        [(x * max / len) as i32, (y * max / len) as i32]
+    }
+
+    /// The early return below max² gives the same bits as the square root,
+    /// on the boundary (3-4-5, lengths one ulp either side of max), at the
+    /// format's ends and on a pseudo-random sweep; a clamped vector is never
+    /// longer than max.
+    #[test]
+    fn clamp_length_matches_its_definition() {
+        let edge = 1 << 30;
+        let mut cases = vec![
+            ([3, 4], 5),
+            ([3, 4], 4),
+            ([3, 4], 6),
+            ([0, 0], 0),
+            ([1, 0], 0),
+            ([-5, 12], 13),
+            ([-5, 12], 12),
+            ([edge, -edge], i32::MAX),
+            ([edge, edge], 1_518_500_250),
+            ([edge, edge], 1_518_500_249),
+            ([-edge, 0], edge),
+            ([-edge, 0], edge - 1),
+            ([7, 7], -3),
+        ];
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for _ in 0..20_000 {
+            let r = next();
+            let shift = (r % 31) as u32;
+            let x = ((r >> 8) as i32) >> (shift + 1);
+            let y = ((r >> 40) as i32) << 8 >> (shift + 1);
+            let len = ((i64::from(x).pow(2) + i64::from(y).pow(2)) as f64).sqrt() as i32;
+            let max = len.saturating_add(((r >> 4) % 5) as i32 - 2);
+            cases.push(([x, y], max));
+        }
+        for (v, max) in cases {
+            let got = clamp_length(v, max);
+            assert_eq!(got, by_definition(v, max), "{v:?} max {max}");
+            let sq = i64::from(got[0]).pow(2) + i64::from(got[1]).pow(2);
+            assert!(sq <= i64::from(max.max(0)).pow(2), "{got:?} longer than {max}");
+        }
     }
 }
