@@ -89,6 +89,14 @@ fn rnd_wide(x: i128, k: u32, bound: i64) -> i64 {
     r.clamp(-i128::from(bound), i128::from(bound)) as i64
 }
 
+/// `x / 2^k` of a wide product whose caller proves the quotient fits `i64`,
+/// rounded half up and clamped to ±`bound`: the same value as [`rnd_wide`],
+/// with the clamp on one word instead of two.
+#[inline(always)]
+fn rnd_fit(x: i128, k: u32, bound: i64) -> i64 {
+    (((x + (1i128 << (k - 1))) >> k) as i64).clamp(-bound, bound)
+}
+
 /// The arm â×d (Q3.29) of an anchor `a` (Q3.29) along unit `d` (Q2.30).
 #[inline(always)]
 fn arm(a: [i64; 2], d: [i64; 2]) -> i64 {
@@ -171,9 +179,9 @@ fn row(pair: &Pair, r: i64, d: [i64; 2], (ra, rb): (i64, i64)) -> [i64; 6] {
     // ρ = m̂/k̂ ≤ 1: m̂·r̂ ≤ k̂·r̂ ≤ 2⁶⁰.
     let ratio = |m: i64| ((m * r) >> FU).min(ONE30);
     let (pa, pb) = (ratio(pair.m[0]), ratio(pair.m[1]));
-    // γ̂ = ĵ·â/k̂: ĵ·â < 2⁶², times r̂ in i128.
+    // γ̂ = ĵ·â/k̂: |ĵ·â| ≤ 2³¹·2³⁰, times r̂ ≤ 2⁶⁰ in i128, then 2⁻⁵⁹: ≤ 2⁶² + 1.
     let g_max = lanes::from_scalar(GAMMA_MAX, FU, 2).into();
-    let gamma = |j: i64, a: i64| rnd_wide(i128::from(j * a) * i128::from(r), 60 + FR - FU, g_max);
+    let gamma = |j: i64, a: i64| rnd_fit(i128::from(j * a) * i128::from(r), 60 + FR - FU, g_max);
     [
         rnd(pa * d[0], FU),
         rnd(pa * d[1], FU),
@@ -354,8 +362,10 @@ fn block_inverse(k: [i64; 2], r: [i64; 2], k12: i64, s: Scalar) -> Option<[i64; 
         }
         // 1/det in Q5.27 (det ≥ 1 ulp: at most 2⁵⁷).
         let inv = (1i64 << (FU + FM)) / det;
-        let diag = rnd_wide(i128::from(s) * i128::from(inv), FU, e_max);
-        let off = |c: i64| -rnd_wide(i128::from(rnd(ss * c, FR)) * i128::from(inv), FU, e_max);
+        // |s| ≤ 2³⁰ and |ss·c| ≤ 2⁶⁰ (rounded to ≤ 2³¹ + 1) times inv ≤ 2⁵⁷, then
+        // 2⁻³⁰: both quotients fit `i64`.
+        let diag = rnd_fit(i128::from(s) * i128::from(inv), FU, e_max);
+        let off = |c: i64| -rnd_fit(i128::from(rnd(ss * c, FR)) * i128::from(inv), FU, e_max);
         let e = [diag, off(c12), off(c21), diag];
         e.iter().all(|x| x.abs() < e_max).then_some(e)
     };
