@@ -110,6 +110,10 @@ struct Pair {
     j: [i64; 2],
     /// Mantissa = value·2^(32 − shift).
     shift: i32,
+    /// The impulse conversion's right shift 48 − shift (within 1..=126) and
+    /// its rounding half, once per pair.
+    down: u32,
+    half: i128,
 }
 
 impl Pair {
@@ -124,7 +128,8 @@ impl Pair {
             let s = if shift >= 0 { x >> shift.unsigned_abs() } else { x << shift.unsigned_abs() };
             (s as i64).min(1 << 31)
         };
-        Self { m: [scale(ma), scale(mb)], j: [scale(ja), scale(jb)], shift }
+        let down = (48 - shift).clamp(1, 126).unsigned_abs();
+        Self { m: [scale(ma), scale(mb)], j: [scale(ja), scale(jb)], shift, down, half: 1 << (down - 1) }
     }
 
     /// k̂ for arms `ra`, `rb` (Q3.29): at most 2³¹·(1 + 4) < 2³⁴.
@@ -146,11 +151,20 @@ impl Pair {
     }
 
     /// 1/k as a `Scalar` (kg) from r̂ = 2⁶⁰/k̂: its bits are r̂·2^(4 − shift).
+    /// In one word: r̂ ≥ 0, so a left shift saturates exactly when r̂ exceeds
+    /// `i64::MAX >> e`, and a right shift of 63 or more leaves 0 (r̂ ≤ 2⁶⁰).
     #[inline(always)]
     fn mass(&self, r: i64) -> Scalar {
         let e = 4 - self.shift;
-        let bits = if e >= 0 { i128::from(r) << e.unsigned_abs() } else { i128::from(r) >> e.unsigned_abs() };
-        Scalar::from_bits(bits.min(i128::from(i64::MAX)) as i64)
+        let by = e.unsigned_abs().min(63);
+        let bits = if e < 0 {
+            r >> by
+        } else if r > i64::MAX >> by {
+            i64::MAX
+        } else {
+            r << by
+        };
+        Scalar::from_bits(bits)
     }
 
     /// λ·k in Q16.16 for an impulse λ (N·s), clamped to ±`bound` (Q16.16):
@@ -158,8 +172,7 @@ impl Pair {
     #[inline(always)]
     fn impulse(&self, lambda: Scalar, k: i64, bound: i64) -> i64 {
         let x = i128::from(lambda.to_bits()) * i128::from(k);
-        let down = (48 - self.shift).clamp(1, 126).unsigned_abs();
-        rnd_wide(x, down, bound)
+        ((x + self.half) >> self.down).clamp(-i128::from(bound), i128::from(bound)) as i64
     }
 }
 
@@ -453,6 +466,24 @@ mod tests {
     }
 
     const FV_BITS: u32 = lanes::FV;
+
+    /// 1/k from r̂ in one word against its definition in i128 (r̂·2^(4 − shift),
+    /// saturated at `i64::MAX`), for every shift a pair can take and r̂ from 0
+    /// to 2⁶⁰: the bits of 1/k̂ scaled back to kg.
+    #[test]
+    fn mass_is_the_scaled_reciprocal_in_one_word() {
+        let mut rs = vec![0i64, 1, 2, 3, (1 << 30) - 1, 1 << 30, (1 << 59) + 12_345, (1 << 60) - 1, 1 << 60];
+        rs.extend((1..=60).map(|b| recip60(1 << b) + b));
+        for shift in -40..=40 {
+            let pair = Pair { m: [0; 2], j: [0; 2], shift, down: 1, half: 1 };
+            for &r in &rs {
+                let e = 4 - shift;
+                let wide = if e >= 0 { i128::from(r) << e } else { i128::from(r) >> -e };
+                let want = wide.min(i128::from(i64::MAX)) as i64;
+                assert_eq!(pair.mass(r).to_bits(), want, "r {r} shift {shift}");
+            }
+        }
+    }
 
     /// The block inverse against the 2×2 inverse it stands for.
     #[test]
