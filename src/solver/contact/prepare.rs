@@ -97,6 +97,14 @@ fn rnd_fit(x: i128, k: u32, bound: i64) -> i64 {
     (((x + (1i128 << (k - 1))) >> k) as i64).clamp(-bound, bound)
 }
 
+/// `x / 2^k` of a non-negative wide product, rounded half up and capped at
+/// `bound`: [`rnd_wide`]'s value (its lower clamp never acts), with one
+/// unsigned comparison instead of two signed ones.
+#[inline(always)]
+fn rnd_unsigned(x: u128, k: u32, bound: u64) -> i64 {
+    ((x + (1u128 << (k - 1))) >> k).min(u128::from(bound)) as i64
+}
+
 /// The arm â×d (Q3.29) of an anchor `a` (Q3.29) along unit `d` (Q2.30).
 #[inline(always)]
 fn arm(a: [i64; 2], d: [i64; 2]) -> i64 {
@@ -258,8 +266,8 @@ pub(crate) fn prepare(
     put(blk, f::NY, l, n[1]);
     put(blk, f::E, l, lanes::from_scalar(arb.restitution, FU, 1).into());
     let lambda_max = i64::from(lanes::LAMBDA_MAX);
-    let phi_max = (PHI_MAX - 1) << lanes::FPHI;
-    let friction = i128::from(arb.friction.max(ZERO).to_bits());
+    let phi_max = ((PHI_MAX - 1) << lanes::FPHI).unsigned_abs();
+    let friction = u128::from(arb.friction.max(ZERO).to_bits().unsigned_abs());
     let mut kn = [0i64; 2];
     let mut rn = [0i64; 2];
     let mut arms_n = [(0i64, 0i64); 2];
@@ -282,8 +290,10 @@ pub(crate) fn prepare(
         let lt = pair.impulse(src.tangent_impulse, k_t, lambda_max);
         // |λ_t| ≤ μ·λ_n ⇔ |λ̂_t| ≤ μ·(k_t/k_n)·λ̂_n; φ·min(λ̂_n, c_φ) ≤ Λ.
         // k_t/k_n in Q2.30 (clamped at 2¹⁰), then μ (Q32.32) times it.
-        let ratio = rnd_wide(i128::from(k_t) * i128::from(r_n), 60 - FU, 1 << 40);
-        let phi = rnd_wide(friction * i128::from(ratio), 32 + FU - lanes::FPHI, phi_max).max(0);
+        // Both products are of non-negative factors (k̂, r̂, μ ≥ 0).
+        let ratio =
+            rnd_unsigned(u128::from(k_t.unsigned_abs()) * u128::from(r_n.unsigned_abs()), 60 - FU, 1 << 40);
+        let phi = rnd_unsigned(friction * u128::from(ratio.unsigned_abs()), 32 + FU - lanes::FPHI, phi_max);
         let c_phi = if phi > 1 << lanes::FPHI { (lambda_max << lanes::FPHI) / phi } else { lambda_max };
         let dv = b.velocity_at_offset(src.anchor_b) - a.velocity_at_offset(src.anchor_a);
         [
@@ -466,6 +476,31 @@ mod tests {
     }
 
     const FV_BITS: u32 = lanes::FV;
+
+    /// The one-word and unsigned roundings give [`rnd_wide`]'s value wherever
+    /// their callers use them: quotients that fit `i64`, and non-negative
+    /// products up to 2¹²⁷ (the friction factor's μ·k_t/k_n at μ = 2³¹).
+    #[test]
+    fn narrow_roundings_match_rnd_wide() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for _ in 0..20_000 {
+            let (a, b) = (next(), next());
+            let k = 1 + (a % 60) as u32;
+            let bound = (b >> (b % 64)) as i64 & i64::MAX;
+            // Non-negative, up to 2^127 − 1.
+            let x = (u128::from(a) << 64 | u128::from(b)) >> (1 + a % 100);
+            assert_eq!(rnd_unsigned(x, k, bound.unsigned_abs()), rnd_wide(x as i128, k, bound));
+            // Signed, with the quotient within i64 (|x| < 2^(62 + k)).
+            let y = ((u128::from(b) << 64 | u128::from(a)) as i128) >> (65 - k.min(60) + (b % 3) as u32);
+            assert_eq!(rnd_fit(y, k, bound), rnd_wide(y, k, bound), "{y} {k} {bound}");
+        }
+    }
 
     /// 1/k from r̂ in one word against its definition in i128 (r̂·2^(4 − shift),
     /// saturated at `i64::MAX`), for every shift a pair can take and r̂ from 0
