@@ -866,12 +866,7 @@ mod tests {
             ([7, 7], -3),
         ];
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = || crate::solver::xorshift(&mut seed);
         for _ in 0..20_000 {
             let r = next();
             let shift = (r % 31) as u32;

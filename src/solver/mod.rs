@@ -102,6 +102,16 @@ use crate::step::StepContext;
 
 pub(crate) use colour::RUNS;
 
+/// xorshift64, the solver's unit tests' pseudo-random numbers: no
+/// allocation, the same sequence on every target.
+#[cfg(test)]
+pub(crate) fn xorshift(state: &mut u64) -> u64 {
+    *state ^= *state << 13;
+    *state ^= *state >> 7;
+    *state ^= *state << 17;
+    *state
+}
+
 /// The direction of sub-step `substep`'s warm start: against the pass before it
 /// (the previous sub-step's relax sweep, or the forward constraint build), so
 /// that it begins with the constraints that pass left in cache. Warm starting

@@ -717,10 +717,7 @@ mod tests {
     struct Rng(u64);
     impl Rng {
         fn next(&mut self) -> u64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            self.0
+            crate::solver::xorshift(&mut self.0)
         }
         /// Uniform in [lo, hi], or one of the edges and zero a quarter of the time.
         fn range(&mut self, lo: i32, hi: i32) -> i32 {

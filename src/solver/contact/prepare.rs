@@ -483,12 +483,7 @@ mod tests {
     #[test]
     fn narrow_roundings_match_rnd_wide() {
         let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = || crate::solver::xorshift(&mut seed);
         for _ in 0..20_000 {
             let (a, b) = (next(), next());
             let k = 1 + (a % 60) as u32;
