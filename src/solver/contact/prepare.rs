@@ -502,11 +502,10 @@ mod tests {
     /// to 2⁶⁰: the bits of 1/k̂ scaled back to kg.
     #[test]
     fn mass_is_the_scaled_reciprocal_in_one_word() {
-        let mut rs = vec![0i64, 1, 2, 3, (1 << 30) - 1, 1 << 30, (1 << 59) + 12_345, (1 << 60) - 1, 1 << 60];
-        rs.extend((1..=60).map(|b| recip60(1 << b) + b));
+        let ends = [0i64, 1, 2, 3, (1 << 30) - 1, 1 << 30, (1 << 59) + 12_345, (1 << 60) - 1, 1 << 60];
         for shift in -40..=40 {
             let pair = Pair { m: [0; 2], j: [0; 2], shift, down: 1, half: 1 };
-            for &r in &rs {
+            for r in ends.into_iter().chain((1..=60).map(|b| recip60(1 << b) + b)) {
                 let e = 4 - shift;
                 let wide = if e >= 0 { i128::from(r) << e } else { i128::from(r) >> -e };
                 let want = wide.min(i128::from(i64::MAX)) as i64;
