@@ -141,10 +141,11 @@ type Pose<const W: usize> = [L<W>; 3];
 /// Reads the velocity and motion of the bodies in `idx`'s lanes.
 #[inline(always)]
 fn gather<const W: usize>(bodies: &[BodyLanes], idx: L<W>) -> (Vel<W>, Pose<W>) {
-    let mut rows = [[0; 8]; W];
+    // Each lane's record in place (no copy), or an empty one out of range.
+    let mut rows = [&BodyLanes::EMPTY.0; W];
     for (r, &b) in rows.iter_mut().zip(idx.0.iter()) {
         if let Some(b) = bodies.get(b as u32 as usize) {
-            *r = b.0;
+            *r = &b.0;
         }
     }
     let mut v = [[0; W]; 6];
