@@ -479,7 +479,7 @@ mod tests {
 
     /// The one-word and unsigned roundings give [`rnd_wide`]'s value wherever
     /// their callers use them: quotients that fit `i64`, and non-negative
-    /// products up to 2¹²⁷ (the friction factor's μ·k_t/k_n at μ = 2³¹).
+    /// products below 2¹²⁷ (the friction factor's μ_bits·ratio is below 2¹⁰³).
     #[test]
     fn narrow_roundings_match_rnd_wide() {
         let mut seed = 0x2545_f491_4f6c_dd1du64;
