@@ -12,7 +12,9 @@ use managed::ManagedSlice;
 
 use crate::hook::Hook;
 
-use crate::arbiter::{mix_friction, mix_restitution, Arbiter, ArbiterState, ArbiterStore, ContactPoint};
+use crate::arbiter::{
+    mix_friction, mix_restitution, sub_key, Arbiter, ArbiterState, ArbiterStore, ContactPoint,
+};
 use crate::arena::Arena;
 use crate::body::{Body, BodyHandle, BodyType, Shape, ShapeStore};
 use crate::collide::{
@@ -316,14 +318,14 @@ pub(crate) fn update_arbiters(
         let (Some((ha, ba)), Some((hb, bb))) = (live_at(bodies, key.0), live_at(bodies, key.1)) else {
             continue;
         };
-        pair_arbiter((ha, ba), (hb, bb), key.2, previous, arb);
+        pair_arbiter((ha, ba), (hb, bb), key_link(key), previous, arb);
         let (a, b) = if arb.body_a == ha { (ba, bb) } else { (bb, ba) };
         if sensor_pair(a, b) {
             // Overlap is judged after the solve ([`touch_events`]); a sensor
             // pair is kept while its boxes meet or it overlaps, never solved.
             arb.solve = false;
             arb.count = 0;
-            arb.touching = false;
+            arb.set_touching(false);
             if (candidate && wants_pair(a, b)) || arb.state == ArbiterState::Contact {
                 out = out.saturating_add(1);
             }
@@ -343,7 +345,7 @@ pub(crate) fn update_arbiters(
         arb.restitution = mix_restitution(a.restitution, b.restitution);
         let mut ctx_cb = CallbackContext { bodies, post_step: post_step.view() };
         if lifecycle(arb, &manifold, handlers, &mut ctx_cb, ctx.arbiter_persistence, events) {
-            if arb.count > 0 && arb.state == ArbiterState::Contact && !arb.touching {
+            if arb.count > 0 && arb.state == ArbiterState::Contact && !arb.is_touching() {
                 approach(arb, a, b);
             }
             out = out.saturating_add(1);
@@ -367,8 +369,15 @@ struct CandidateKeys<'c, 'b, 'a> {
     current: Option<ArbiterKey>,
 }
 
-/// An arbiter's key: (lower body slot, higher body slot, chain link).
+/// An arbiter's key: (lower body slot, higher body slot, sub-key; see
+/// [`Arbiter::key`]).
 pub(crate) type ArbiterKey = (u32, u32, u32);
+
+/// The chain link of a key (see [`Arbiter::key`]).
+#[inline]
+fn key_link(key: ArbiterKey) -> u32 {
+    key.2 >> 6
+}
 
 impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
     fn new(pairs: &'c [(u32, u32)], bodies: &'b Arena<'a, Body>, shapes: &'b ShapeStore<'a>) -> Self {
@@ -382,16 +391,16 @@ impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
     }
 
     fn advance(&mut self) {
-        let after = self.current.map(|(x, y, l)| (x, y, l.saturating_add(1)));
+        let after = self.current.map(|k| (k.0, k.1, key_link(k).saturating_add(1)));
         self.current = self.key_at_or_after(after);
     }
 
-    /// The first key at or after `at` (a pair's next link), else the first
-    /// key of the following pairs.
-    fn key_at_or_after(&mut self, at: Option<ArbiterKey>) -> Option<ArbiterKey> {
+    /// The first key at `at` = (pair, first link to look at) or after it (a
+    /// pair's next link), else the first key of the following pairs.
+    fn key_at_or_after(&mut self, at: Option<(u32, u32, u32)>) -> Option<ArbiterKey> {
         if let Some((x, y, from)) = at {
             if let Some(link) = self.next_link(x, y, from) {
-                return Some((x, y, link));
+                return Some((x, y, sub_key(link, 0, 0)));
             }
             self.i = self.i.saturating_add(1);
         }
@@ -401,7 +410,7 @@ impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
                 return Some((x, y, 0));
             }
             if let Some(link) = self.next_link(x, y, 0) {
-                return Some((x, y, link));
+                return Some((x, y, sub_key(link, 0, 0)));
             }
             self.i = self.i.saturating_add(1);
         }
@@ -447,7 +456,7 @@ fn end_dropped(
         events.sensor(false, sensor, visitor);
         return;
     }
-    if arb.touching {
+    if arb.is_touching() {
         events.end(arb.body_a, arb.body_b);
     }
     let mut ended = *arb;
@@ -540,7 +549,7 @@ pub(crate) fn touch_events(
                 _ => false,
             }
         };
-        if now && !arb.touching {
+        if now && !arb.is_touching() {
             events.begin(ContactBeginEvent { body_a: arb.body_a, body_b: arb.body_b, normal: arb.normal });
             let (speed, point) = fastest_approach(arb);
             if speed > events.hit_threshold {
@@ -552,10 +561,10 @@ pub(crate) fn touch_events(
                     speed,
                 });
             }
-        } else if !now && arb.touching {
+        } else if !now && arb.is_touching() {
             events.end(arb.body_a, arb.body_b);
         }
-        arb.touching = now;
+        arb.set_touching(now);
     }
     if drop_any {
         // Only sensor arbiters are in `NoCollision` after the lifecycle.
@@ -656,8 +665,8 @@ fn lifecycle(
     }
     // Not touching (or its boxes no longer overlap).
     arb.count = 0;
-    if arb.touching {
-        arb.touching = false;
+    if arb.is_touching() {
+        arb.set_touching(false);
         events.end(arb.body_a, arb.body_b);
     }
     if matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring) {

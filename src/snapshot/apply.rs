@@ -63,10 +63,10 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
             level_a: level(a.a),
             level_b: level(a.b),
             state: ArbiterState::from_u8(a.state & !TOUCHING).unwrap_or(ArbiterState::Separated),
-            touching: a.state & TOUCHING != 0,
             count: a.count,
             ..Arbiter::EMPTY
         };
+        arb.set_touching(a.state & TOUCHING != 0);
         arb.set_steps_and_link(a.steps_separated, a.link);
         for (p, stored) in arb.points.iter_mut().zip(a.points) {
             p.id = stored.id;

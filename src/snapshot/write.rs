@@ -261,7 +261,7 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
             rec.u32(h.index());
             rec.u32(h.generation());
         }
-        rec.u8(a.state as u8 | if a.touching { TOUCHING } else { 0 });
+        rec.u8(a.state as u8 | if a.is_touching() { TOUCHING } else { 0 });
         rec.u32(a.steps_separated());
         rec.u8(a.count);
         for (k, p) in a.points.iter().enumerate() {
