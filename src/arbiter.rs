@@ -213,6 +213,14 @@ impl Arbiter {
         u32::from(self.flags >> (1 + SHAPE_BITS)) & MAX_SHAPE_INDEX
     }
 
+    /// Sets the shape indices on bodies A and B (each at most
+    /// [`MAX_SHAPE_INDEX`], masked).
+    #[inline]
+    pub(crate) fn set_shapes(&mut self, a: u32, b: u32) {
+        let (a, b) = ((a & MAX_SHAPE_INDEX) as u8, (b & MAX_SHAPE_INDEX) as u8);
+        self.flags = (self.flags & TOUCHING_FLAG) | (a << 1) | (b << (1 + SHAPE_BITS));
+    }
+
     /// Sets whether the bodies touched at the end of the step.
     #[inline]
     pub(crate) fn set_touching(&mut self, on: bool) {
@@ -525,8 +533,8 @@ mod tests {
         let mut a = Arbiter::EMPTY;
         a.body_a = BodyHandle::from_parts(5, 0);
         a.body_b = BodyHandle::from_parts(2, 0);
-        a.flags = (6 << 1) | (1 << 4);
         a.set_touching(true);
+        a.set_shapes(6, 1);
         a.set_steps_and_link(9, MAX_LINK);
         assert!(a.is_touching());
         assert_eq!((a.shape_a(), a.shape_b()), (6, 1));

@@ -67,7 +67,8 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
             ..Arbiter::EMPTY
         };
         arb.set_touching(a.state & TOUCHING != 0);
-        arb.set_steps_and_link(a.steps_separated, a.link);
+        arb.set_steps_and_link(a.steps_separated, a.link());
+        arb.set_shapes(a.shape_a(), a.shape_b());
         for (p, stored) in arb.points.iter_mut().zip(a.points) {
             p.id = stored.id;
             p.normal_impulse = stored.normal_impulse;

@@ -132,7 +132,7 @@ pub fn diff(a: &[u8], b: &[u8]) -> Result<Option<Difference>, Error> {
         let (x, y, _) = aa.key();
         let object = Object::Arbiter(x, y);
         let fields = [
-            (aa.key() != ab.key() || aa.a != ab.a || aa.b != ab.b, "bodies or chain link"),
+            (aa.key() != ab.key() || aa.a != ab.a || aa.b != ab.b, "bodies, chain link or shapes"),
             (aa.state != ab.state, "state"),
             (aa.steps_separated != ab.steps_separated, "steps since separation"),
             (aa.count != ab.count, "contact point count"),

@@ -14,8 +14,10 @@ use super::cursor::Cursor;
 use super::write::Props;
 use super::{
     checksum, invalid, ARBITER_LINKS, ARBITER_RECORD, BODY_RECORD, BULLET, FIXED_ROTATION, HEADER,
-    JOINT_RECORD, LINK_MASK, LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, TRAILER, VERSION,
+    JOINT_RECORD, LINK_MASK, LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, SHAPES_SHIFT, TRAILER,
+    VERSION,
 };
+use crate::arbiter::{sub_key, MAX_LINK, MAX_SHAPE_INDEX};
 use crate::body::{BodyHandle, BodyType, CollisionFilter, Shape};
 use crate::constraint::{Joint, JointDef, JointKind, MaxTorque, Motor};
 use crate::error::Error;
@@ -285,11 +287,11 @@ impl<'b> Layout<'b> {
         for p in &mut points {
             *p = PointRecord { id: c.u16()?, normal_impulse: c.scalar()?, tangent_impulse: c.scalar()? };
         }
-        let link = match self.links_at {
+        let sub = match self.links_at {
             Some(at) => self.record::<4>(at, i).u32()?,
             None => 0,
         };
-        Ok(ArbiterRecord { a, b, state, steps_separated, count, points, link })
+        Ok(ArbiterRecord { a, b, state, steps_separated, count, points, sub })
     }
 
     pub(super) fn joint(&self, i: u32) -> Result<JointRecord, Error> {
@@ -431,8 +433,9 @@ pub(super) struct ArbiterRecord {
     pub(super) steps_separated: u32,
     pub(super) count: u8,
     pub(super) points: [PointRecord; 2],
-    /// The chain link (0 when the pair has none).
-    pub(super) link: u32,
+    /// The sub-key word (see [`ARBITER_LINKS`]): the chain link and the
+    /// shape indices (0 when the pair has no section).
+    pub(super) sub: u32,
 }
 
 /// One contact point of an arbiter as stored: its feature id and its
@@ -445,9 +448,32 @@ pub(super) struct PointRecord {
 }
 
 impl ArbiterRecord {
+    /// The key [`Arbiter::key`](crate::arbiter::Arbiter) gives the arbiter.
     pub(super) fn key(&self) -> (u32, u32, u32) {
         let (a, b) = (self.a.index(), self.b.index());
-        (a.min(b), a.max(b), self.link)
+        let (lo, hi) =
+            if a <= b { (self.shape_a(), self.shape_b()) } else { (self.shape_b(), self.shape_a()) };
+        (a.min(b), a.max(b), sub_key(self.link(), lo, hi))
+    }
+
+    /// The chain link: the sub-key word's bits 0–19.
+    pub(super) fn link(&self) -> u32 {
+        self.sub & MAX_LINK
+    }
+
+    /// The shape index on body A.
+    pub(super) fn shape_a(&self) -> u32 {
+        (self.sub >> SHAPES_SHIFT) & MAX_SHAPE_INDEX
+    }
+
+    /// The shape index on body B.
+    pub(super) fn shape_b(&self) -> u32 {
+        (self.sub >> (SHAPES_SHIFT + 3)) & MAX_SHAPE_INDEX
+    }
+
+    /// True when the sub-key word's unused bits (20–25) are 0.
+    pub(super) fn sub_is_canonical(&self) -> bool {
+        self.sub & !(MAX_LINK | (u32::MAX << SHAPES_SHIFT)) == 0
     }
 }
 

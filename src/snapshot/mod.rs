@@ -24,9 +24,10 @@
 //! 5. the generator allocator and the force generators;
 //! 6. the arbiters (58 bytes each: the pair, state and touching flag, steps since separation, and
 //!    per contact point its feature id and accumulated normal and friction
-//!    impulses); when an arbiter is for a chain link other than 0, bit 31 of
-//!    their count is set ([`ARBITER_LINKS`]) and the records are followed by
-//!    each arbiter's link (u32);
+//!    impulses); when an arbiter is for a chain link or a shape other than 0,
+//!    bit 31 of their count is set ([`ARBITER_LINKS`]) and the records are
+//!    followed by each arbiter's sub-key word (u32: the chain link in bits
+//!    0–19, the shape index on body A in bits 26–28 and on body B in 29–31);
 //! 7. the joint allocator and the joints (160 bytes each);
 //! 8. the trailer, [`TRAILER`] = 8 bytes: the XXH64 checksum (seed 0) of every
 //!    byte before it.
@@ -116,9 +117,16 @@ pub const PROPS_RECORD: usize = 118;
 /// Bytes of one arbiter record.
 pub const ARBITER_RECORD: usize = 58;
 /// Bit 31 of the arbiter count: the arbiter records are followed by one
-/// chain link (u32) per arbiter. Written only when an arbiter's link is not
-/// 0 (a pair with a chain), so a world without chains encodes as before.
+/// u32 per arbiter, its chain link (bits 0–19) and the indices of its shapes
+/// on body A (bits 26–28) and body B (bits 29–31); bits 20–25 are 0.
+/// Written only when some arbiter's link or shape index is not 0 (a pair
+/// with a chain or a body of several shapes), so a world of one-shape
+/// bodies without chains encodes as before, and one with chains as it did
+/// before bodies had several shapes.
 pub const ARBITER_LINKS: u32 = 1 << 31;
+/// Where an arbiter's shape index on body A starts in its sub-key word (see
+/// [`ARBITER_LINKS`]); body B's follows 3 bits higher.
+const SHAPES_SHIFT: u32 = 26;
 /// Bytes of one joint record.
 pub const JOINT_RECORD: usize = 160;
 

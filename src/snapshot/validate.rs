@@ -10,7 +10,7 @@
 use super::layout::{Alloc, BodyRecord, GeneratorRecord, Layout, StoredGenerator};
 use super::write::{paths_checksum, Props};
 use super::{invalid, NO_LINK, TOUCHING};
-use crate::arbiter::{ArbiterState, MAX_LINK, MAX_STEPS_SEPARATED};
+use crate::arbiter::{ArbiterState, MAX_STEPS_SEPARATED};
 use crate::body::{BodyHandle, BodyType, Shape};
 use crate::error::Error;
 use crate::force::{Generator, Targets};
@@ -214,11 +214,15 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
             return Err(invalid("arbiters out of order"));
         }
         last = Some(key);
-        if a.link != 0 && w.paths.chains.used() == 0 {
+        if a.link() != 0 && w.paths.chains.used() == 0 {
             return Err(invalid("a chain link in a world without chains"));
         }
-        if a.link > MAX_LINK || a.steps_separated > MAX_STEPS_SEPARATED {
+        if !a.sub_is_canonical() || a.steps_separated > MAX_STEPS_SEPARATED {
             return Err(invalid("an arbiter's link or steps since separation out of range"));
+        }
+        // Every body has one shape, index 0.
+        if a.shape_a() != 0 || a.shape_b() != 0 {
+            return Err(invalid("an arbiter names a shape its body does not have"));
         }
         if !live_body(l, a.a)? || !live_body(l, a.b)? {
             return Err(invalid("an arbiter names a body that is not in the snapshot"));

@@ -3,8 +3,10 @@
 use super::hash::Hash64;
 use super::{
     Part, Sink, ARBITER_LINKS, ARBITER_RECORD, BODY_RECORD, BULLET, FIXED_ROTATION, HEADER, JOINT_RECORD,
-    LINK_MASK, LIVE, MAGIC, NO_LINK, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, TOUCHING, TRAILER, VERSION,
+    LINK_MASK, LIVE, MAGIC, NO_LINK, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, SHAPES_SHIFT, TOUCHING, TRAILER,
+    VERSION,
 };
+use crate::arbiter::Arbiter;
 use crate::arena::NO_SLOT;
 use crate::body::{Body, BodyType, CollisionFilter, Shape};
 use crate::constraint::{Joint, JointKind, MaxTorque};
@@ -278,7 +280,7 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
     }
     if links {
         for a in live {
-            s.u32(a.link());
+            s.u32(sub_word(a));
         }
     }
 
@@ -307,10 +309,15 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
     }
 }
 
-/// True when an arbiter is for a chain link other than 0 (the links are
-/// then written after the arbiter records).
+/// True when an arbiter is for a chain link or a shape other than 0 (the
+/// sub-key words are then written after the arbiter records).
 fn has_links(w: &World<'_>) -> bool {
-    w.arbiters.live().iter().any(|a| a.link() != 0)
+    w.arbiters.live().iter().any(|a| sub_word(a) != 0)
+}
+
+/// An arbiter's sub-key word as stored (see [`ARBITER_LINKS`]).
+fn sub_word(a: &Arbiter) -> u32 {
+    a.link() | (a.shape_a() << SHAPES_SHIFT) | (a.shape_b() << (SHAPES_SHIFT + 3))
 }
 
 /// A free-list link in the 30-bit form.
