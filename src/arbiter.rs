@@ -213,6 +213,13 @@ impl Arbiter {
         u32::from(self.flags >> (1 + SHAPE_BITS)) & MAX_SHAPE_INDEX
     }
 
+    /// The shape indices on bodies A and B as bytes (each at most 7).
+    #[inline]
+    pub(crate) fn shape_bytes(&self) -> (u8, u8) {
+        let mask = MAX_SHAPE_INDEX as u8;
+        ((self.flags >> 1) & mask, (self.flags >> (1 + SHAPE_BITS)) & mask)
+    }
+
     /// Sets the shape indices on bodies A and B (each at most
     /// [`MAX_SHAPE_INDEX`], masked).
     #[inline]

@@ -452,12 +452,11 @@ fn end_dropped(
         return;
     }
     if sensor_pair(a, b) {
-        let (sensor, visitor) = if a.sensor { (arb.body_a, arb.body_b) } else { (arb.body_b, arb.body_a) };
-        events.sensor(false, sensor, visitor);
+        events.sensor(false, arb, a.sensor);
         return;
     }
     if arb.is_touching() {
-        events.end(arb.body_a, arb.body_b);
+        events.end(arb);
     }
     let mut ended = *arb;
     ended.state = ArbiterState::Separated;
@@ -533,9 +532,7 @@ pub(crate) fn touch_events(
             let overlap = wants_pair(a, b) && overlapping(a, b, paths, arb.link());
             let was = arb.state == ArbiterState::Contact;
             if overlap != was {
-                let (sensor, visitor) =
-                    if a.sensor { (arb.body_a, arb.body_b) } else { (arb.body_b, arb.body_a) };
-                events.sensor(overlap, sensor, visitor);
+                events.sensor(overlap, arb, a.sensor);
             }
             arb.state = if overlap { ArbiterState::Contact } else { ArbiterState::NoCollision };
             arb.reset_steps_separated();
@@ -550,7 +547,14 @@ pub(crate) fn touch_events(
             }
         };
         if now && !arb.is_touching() {
-            events.begin(ContactBeginEvent { body_a: arb.body_a, body_b: arb.body_b, normal: arb.normal });
+            let (shape_a, shape_b) = arb.shape_bytes();
+            events.begin(ContactBeginEvent {
+                body_a: arb.body_a,
+                body_b: arb.body_b,
+                normal: arb.normal,
+                shape_a,
+                shape_b,
+            });
             let (speed, point) = fastest_approach(arb);
             if speed > events.hit_threshold {
                 events.hit(ContactHitEvent {
@@ -559,10 +563,12 @@ pub(crate) fn touch_events(
                     point,
                     normal: arb.normal,
                     speed,
+                    shape_a,
+                    shape_b,
                 });
             }
         } else if !now && arb.is_touching() {
-            events.end(arb.body_a, arb.body_b);
+            events.end(arb);
         }
         arb.set_touching(now);
     }
@@ -667,7 +673,7 @@ fn lifecycle(
     arb.count = 0;
     if arb.is_touching() {
         arb.set_touching(false);
-        events.end(arb.body_a, arb.body_b);
+        events.end(arb);
     }
     if matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring) {
         arb.state = ArbiterState::Separated;

@@ -265,17 +265,26 @@ impl Storage<'_> {
     }
 }
 
-const EMPTY_BEGIN: ContactBeginEvent =
-    ContactBeginEvent { body_a: BodyHandle::NULL, body_b: BodyHandle::NULL, normal: Vector2::ZERO };
-const EMPTY_END: ContactEndEvent = ContactEndEvent { body_a: BodyHandle::NULL, body_b: BodyHandle::NULL };
+const EMPTY_BEGIN: ContactBeginEvent = ContactBeginEvent {
+    body_a: BodyHandle::NULL,
+    body_b: BodyHandle::NULL,
+    normal: Vector2::ZERO,
+    shape_a: 0,
+    shape_b: 0,
+};
+const EMPTY_END: ContactEndEvent =
+    ContactEndEvent { body_a: BodyHandle::NULL, body_b: BodyHandle::NULL, shape_a: 0, shape_b: 0 };
 const EMPTY_HIT: ContactHitEvent = ContactHitEvent {
     body_a: BodyHandle::NULL,
     body_b: BodyHandle::NULL,
     point: Vector2::ZERO,
     normal: Vector2::ZERO,
     speed: crate::math::scalar::ZERO,
+    shape_a: 0,
+    shape_b: 0,
 };
-const EMPTY_SENSOR: SensorEvent = SensorEvent { sensor: BodyHandle::NULL, visitor: BodyHandle::NULL };
+const EMPTY_SENSOR: SensorEvent =
+    SensorEvent { sensor: BodyHandle::NULL, visitor: BodyHandle::NULL, sensor_shape: 0, visitor_shape: 0 };
 
 /// Statically sized buffers for a world that needs no allocator: `BODIES` bodies
 /// and as many polygon paths, `CONTACTS` candidate pairs and arbiters (a
