@@ -1,11 +1,14 @@
 //! Bodies of several shapes (issue 19, part 2), the parts built so far: the
-//! arbiter's shape indices in the snapshot (the sub-key words after the
-//! arbiter records) are refused when they name a shape a body does not
-//! have, and a world with chains keeps its encoding.
+//! mass of several shapes about their common centre; the arbiter's shape
+//! indices in the snapshot (the sub-key words after the arbiter records) are
+//! refused when they name a shape a body does not have, and a world with
+//! chains keeps its encoding.
 
+use arphysics::geometry::{compound_mass, MassPart};
 use arphysics::snapshot::TRAILER;
 use arphysics::{
-    BodyDef, Capacities, ChainPath, Error, GravityForceGenerator, Rect, Scalar, Vector2, World, WorldDef,
+    BodyDef, Capacities, ChainPath, Error, GravityForceGenerator, MassData, PolygonPath, Rect, Scalar,
+    Vector2, World, WorldDef,
 };
 use twox_hash::XxHash64;
 
@@ -78,4 +81,43 @@ fn arbiter_shape_indices_a_body_does_not_have_are_refused() {
     // The untouched snapshot restores, and stepping on is the same.
     w.restore(&snap).expect("restore");
     assert_eq!(w.state_hash(), before);
+}
+
+/// A part: a `w` × `h` box at density 1 centred at (`x`, `y`), its mass data
+/// as the engine computes it for a one-shape body.
+fn box_part(w: f64, h: f64, x: f64, y: f64) -> MassPart {
+    let path = PolygonPath::rectangle(s(w), s(h)).expect("box");
+    let m = MassData::from_density(Scalar::ONE, path.area(), path.unit_inertia()).expect("mass");
+    MassPart { mass: m.mass, centre: v(x, y), inertia: m.inertia }
+}
+
+#[test]
+fn two_boxes_side_by_side_have_the_mass_data_of_one_box_twice_as_wide() {
+    // Two 1 m × 0.5 m boxes whose sides touch make a 2 m × 0.5 m box: the
+    // parallel-axis sum about the common centre is its m(w² + h²)/12.
+    let (m, c) = compound_mass(&[box_part(1.0, 0.5, -0.5, 2.0), box_part(1.0, 0.5, 0.5, 2.0)]).expect("mass");
+    let whole = box_part(2.0, 0.5, 0.0, 2.0);
+    assert_eq!((m.mass, c), (whole.mass, v(0.0, 2.0)));
+    let exact = 1.0 * (4.0 + 0.25) / 12.0;
+    for got in [m.inertia, whole.inertia] {
+        assert!((got.to_num::<f64>() - exact).abs() / exact < 1e-8, "{got} vs {exact}");
+    }
+    assert!((m.inertia - whole.inertia).abs() <= Scalar::from_bits(4));
+}
+
+#[test]
+fn an_l_of_two_boxes_has_the_closed_form_inertia_about_its_centre() {
+    // A 2 × 0.5 foot and a 0.5 × 1.5 leg standing on its left end: the
+    // centre is the area-weighted mean of (0, 0) and (−0.75, 1); each box
+    // adds m(w² + h²)/12 + m·d² about it.
+    let (foot, leg) = (box_part(2.0, 0.5, 0.0, 0.0), box_part(0.5, 1.5, -0.75, 1.0));
+    let (m, c) = compound_mass(&[foot, leg]).expect("mass");
+    let (mf, ml) = (1.0_f64, 0.75_f64);
+    let (cx, cy) = ((ml * -0.75) / (mf + ml), (ml * 1.0) / (mf + ml));
+    let i_foot = mf * (4.0 + 0.25) / 12.0 + mf * (cx * cx + cy * cy);
+    let i_leg = ml * (0.25 + 2.25) / 12.0 + ml * ((-0.75 - cx).powi(2) + (1.0 - cy).powi(2));
+    assert!((c.x.to_num::<f64>() - cx).abs() < 1e-9 && (c.y.to_num::<f64>() - cy).abs() < 1e-9, "{c:?}");
+    let exact = i_foot + i_leg;
+    assert!((m.inertia.to_num::<f64>() - exact).abs() / exact < 1e-8, "{} vs {exact}", m.inertia);
+    assert_eq!(m.mass, Scalar::lit("1.75"));
 }
