@@ -80,13 +80,16 @@ CHECKED=$(date +%s)
 
 # The screenshot: the default scene after 240 frames. Headless Chromium now and
 # then shoots before the module has loaded; the DOM dumped in the same run
-# tells (the frame counter reads 240 once it has), and then it tries again.
+# tells (the frame counter reads 240 once it has), and then it tries again,
+# with more virtual time each attempt (3 s once failed three times in a row on a
+# fresh clone: the page had not loaded the module yet).
 SHOT=1
-for attempt in 1 2 3; do
+for attempt in 1 2 3 4 5; do
+  BUDGET=$((attempt * 5000))
   rm -f "$OUT/testbed.png"
   set +e
   timeout -k 10 120 chromium "${FLAGS[@]}" --window-size=1400,760 --hide-scrollbars \
-    --virtual-time-budget=3000 --dump-dom --screenshot="$OUT/testbed.png" "$URL?scene=default&frames=240" \
+    --virtual-time-budget="$BUDGET" --dump-dom --screenshot="$OUT/testbed.png" "$URL?scene=default&frames=240" \
     2> "$OUT/chromium-screenshot.log" > "$OUT/screenshot-dom.html"
   RC=$?
   set -e
@@ -123,7 +126,7 @@ for name in ("chromium.log", "chromium-screenshot.log"):
             fails.append("console (%s): %s" % (name, l.strip()))
 png = os.path.join(out, "testbed.png")
 if shot != 0 or not os.path.exists(png) or os.path.getsize(png) < 1000:
-    fails.append("no screenshot of the loaded page in 3 attempts")
+    fails.append("no screenshot of the loaded page in 5 attempts")
 else:
     print("  screenshot: %s (%d KB)" % (png, os.path.getsize(png) // 1024))
 if fails:

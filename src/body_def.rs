@@ -192,7 +192,7 @@ impl BodyDef {
             linear_velocity: Vector2::ZERO,
             angular_velocity: ZERO,
             mass: MassSpec::Density(scalar::ONE),
-            friction: Scalar::lit("0.6"),
+            friction: const { Scalar::lit("0.6") },
             restitution: ZERO,
             collision_groups: 0,
             collision_level: 0,

@@ -139,7 +139,7 @@
 //! | moment of inertia | 1e-6 – 1e6 kg·m² ([`geometry::mass::MAX_INERTIA`]): a circle's is m·r²/2, a w × h box's m·(w² + h²)/12, so a 128 m circle weighs ≤ 122 kg, a 1 cm circle ≥ 20 g | angular momentum ≤ 2.6e8 at 256 rad/s; 1/inertia ≤ 1e6 |
 //! | friction, restitution | 0 – 100 ([`limits::MAX_FRICTION`]), 0 – 1; bodies and arbiters alike | friction bound μ·λn |
 //! | body damping, gravity scale | 0 – 1,024 /s ([`limits::MAX_BODY_DAMPING`]); ±16 ([`limits::MAX_GRAVITY_SCALE`]), the scaled acceleration clamped to ±16,384 m/s² | damping factor exact; forces in range |
-//! | joints | lengths ≤ 1,024 m, stiffness ≤ 1e6 N/m, damping ≤ 1e5 N·s/m, motor speed ≤ ±512 rad/s ([`limits`]) | spring forces exact; explicit springs stable |
+//! | joints | lengths ≤ 1,024 m, stiffness ≤ 1e6 N/m, damping ≤ 1e5 N·s/m, motor speed ≤ ±512 rad/s; a target joint's frequency in (0, 1,000] Hz, damping ratio ≤ 100, force ≤ 1.6e9 N ([`limits`]) | spring forces exact; explicit springs stable |
 //! | force generators | ±16,384 m/s² per component ([`limits::MAX_ACCELERATION`]), ±1.6e9 N ([`limits::MAX_FORCE`]), points within ±2^20 m | momentum after forces in range |
 //! | arbiter persistence | 0 – 256 steps ([`limits::MAX_ARBITER_PERSISTENCE`]) | separated arbiters expire |
 //! | speed | ≤ 2,048 m/s configurable, default 400 ([`WorldDef::max_linear_speed`]) | squared speeds exact |
@@ -168,8 +168,9 @@
 //! | joint break (`b2Joint_GetConstraintForce` + destroy) | — | [`JointDef::breakable`], [`World::joint_broke_events`] |
 //! | `cpSpaceAddPostStepCallback` | same | [`CallbackContext::add_post_step_callback`] |
 //! | `b2RevoluteJoint`, `b2WeldJoint`, `b2DistanceJoint`, motor, limits, springs | `cpPivotJoint`, `cpDampedSpring`, `cpSlideJoint`… | [`JointKind`]: `Pivot` (limits, motor), `Weld`, `Rod`, `Rope`, `Spring`, `DampedSpring`; breakable |
+//! | `b2MouseJoint`, `b2MouseJoint_SetTarget` | (a pivot to a moving static body) | [`JointKind::Target`] (frequency, damping ratio, force limit), [`World::set_joint_target`] |
 //! | `b2World_CastRay`, `b2World_CastShape`, `b2World_OverlapAABB` | `cpSpaceSegmentQuery`, `cpSpaceBBQuery` | [`World::ray_cast`], [`World::ray_cast_all`], [`World::shape_cast`], [`World::query_aabb`], [`World::query_point`], [`World::query_shape`] |
-//! | `b2World_Step(world, dt, subSteps)` | `cpSpaceStep` | [`World::step`]; sub-steps in [`WorldDef::substeps`] |
+//! | `b2World_Step(world, dt, subSteps)` | `cpSpaceStep` | [`World::step`]; sub-steps in [`WorldDef::substeps`], changed with [`World::set_substeps`] |
 //! | floats, SIMD, threads | floats | Q32.32 fixed point, one thread, the same bits everywhere; [`World::snapshot`] / [`World::restore`] / [`World::state_hash`] |
 //!
 //! Units are SI throughout (metres, kilograms, seconds, radians); keep bodies between a

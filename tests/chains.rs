@@ -8,29 +8,13 @@ use arphysics::{
     QueryFilter, QueryShape, Rect, Scalar, Transform, Vector2, World, WorldDef,
 };
 
-fn s(x: f64) -> Scalar {
-    Scalar::from_num(x)
-}
+mod common;
 
-fn v(x: f64, y: f64) -> Vector2 {
-    Vector2::new(s(x), s(y))
-}
-
-fn f(x: Scalar) -> f64 {
-    x.to_num()
-}
-
-fn dt() -> Scalar {
-    Scalar::ONE / Scalar::from_num(60)
-}
+use common::{dt, f, s, v};
 
 /// A 400 × 200 m world with gravity (0, −10) and room for 512 chain points.
 fn world() -> World<'static> {
-    let bounds = Rect::from_corners(v(-200.0, -100.0), v(200.0, 100.0));
-    let caps = Capacities { chain_vertices: 512, ..Capacities::for_bodies(256) };
-    let mut w = World::with_capacities(WorldDef::with_bounds(bounds), caps).expect("world");
-    w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0))).expect("gravity");
-    w
+    common::world_with(200.0, 100.0, Capacities { chain_vertices: 512, ..Capacities::for_bodies(256) }, true)
 }
 
 /// Flat ground at y = 0 from x = −2 to 98: 100 collinear 1 m links, walked

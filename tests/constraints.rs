@@ -6,27 +6,17 @@ use std::sync::atomic::{AtomicU32, Ordering};
 use arphysics::constraint::Constraint;
 use arphysics::{
     Body, BodyDef, BodyHandle, Capacities, Error, GravityForceGenerator, Joint, JointDef, JointHandle,
-    JointKind, MaxTorque, Motor, PolygonPath, Rect, Scalar, Vector2, World, WorldDef,
+    JointKind, MaxTorque, Motor, PolygonPath, Scalar, Vector2, World,
 };
 
-fn s(x: f64) -> Scalar {
-    Scalar::from_num(x)
-}
+mod common;
 
-fn v(x: f64, y: f64) -> Vector2 {
-    Vector2::new(s(x), s(y))
-}
+use common::{s, v};
 
 const DT: f64 = 1.0 / 60.0;
 
 fn world(gravity: bool) -> World<'static> {
-    let bounds = Rect::from_corners(v(-200.0, -200.0), v(200.0, 200.0));
-    let mut w =
-        World::with_capacities(WorldDef::with_bounds(bounds), Capacities::for_bodies(64)).expect("world");
-    if gravity {
-        w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0))).expect("g");
-    }
-    w
+    common::world_with(200.0, 200.0, Capacities::for_bodies(64), gravity)
 }
 
 /// Times between successive upward zero crossings of `f` sampled every `DT`,

@@ -5,33 +5,17 @@
 use std::f64::consts::PI;
 
 use arphysics::{
-    BodyDef, BodyHandle, Capacities, Capsule, Error, GravityForceGenerator, MassSpec, PolygonPath,
-    QueryFilter, QueryShape, Rect, Rot, Scalar, Segment, Shape, Transform, Vector2, World, WorldDef,
+    BodyDef, BodyHandle, Capacities, Capsule, Error, MassSpec, PolygonPath, QueryFilter, QueryShape, Rot,
+    Scalar, Segment, Shape, Transform, World,
 };
 
-fn s(x: f64) -> Scalar {
-    Scalar::from_num(x)
-}
+mod common;
 
-fn v(x: f64, y: f64) -> Vector2 {
-    Vector2::new(s(x), s(y))
-}
-
-fn f(x: Scalar) -> f64 {
-    x.to_num()
-}
-
-fn dt() -> Scalar {
-    Scalar::ONE / Scalar::from_num(60)
-}
+use common::{dt, f, s, v};
 
 /// A 400 × 200 m world with gravity (0, −10).
 fn world() -> World<'static> {
-    let bounds = Rect::from_corners(v(-200.0, -100.0), v(200.0, 100.0));
-    let mut w =
-        World::with_capacities(WorldDef::with_bounds(bounds), Capacities::for_bodies(64)).expect("world");
-    w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0))).expect("gravity");
-    w
+    common::world_with(200.0, 100.0, Capacities::for_bodies(64), true)
 }
 
 /// A static ground segment along y = 0 from x = −50 to 50.

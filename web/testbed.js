@@ -72,6 +72,8 @@ const stepTimes = [];
 let view = [-20, -1, 20, 20];   // x0, y0, x1, y1 (m)
 let nativeNote = null;          // the last comparison with native: {frame, ok}
 let dragging = false;
+let loadedSubsteps = DEFAULT_SUBSTEPS; // the count the scene was loaded with
+const stepStamps = [];          // performance.now() of recent steps (the rate)
 
 function message(s) { $('message').textContent = s || ''; }
 
@@ -79,6 +81,8 @@ function load(index) {
   const r = call('tb_load', index, substeps);
   if (r < 0) { message('cannot load: ' + lastError()); return false; }
   scene = index;
+  loadedSubsteps = substeps;
+  stepStamps.length = 0;
   const sc = info.scenes[index];
   view = sc.view.slice();
   nativeNote = null;
@@ -103,10 +107,12 @@ function stepOnce() {
   if (r < 0) { message('step failed: ' + lastError()); playing = false; return; }
   stepTimes.push(ms);
   if (stepTimes.length > 30) stepTimes.shift();
+  stepStamps.push(t0);
+  while (stepStamps.length > 0 && t0 - stepStamps[0] > 1000) stepStamps.shift();
   // Compare with native at its checkpoints, for an untouched run at 4 sub-steps.
   const frame = call('tb_frame');
   const want = nativeHash(info.scenes[scene].name, frame);
-  if (want !== undefined && substeps === DEFAULT_SUBSTEPS && call('tb_interacted') === 0) {
+  if (want !== undefined && loadedSubsteps === DEFAULT_SUBSTEPS && call('tb_interacted') === 0) {
     nativeNote = { frame, want, got: stateHash() };
   }
 }
@@ -119,6 +125,17 @@ function updatePanel() {
   $('bodies').textContent = call('tb_body_count');
   $('contacts').textContent = call('tb_contact_count');
   $('joints').textContent = call('tb_joint_count');
+  $('substepsnow').textContent = call('tb_substeps');
+  // Steps in the last second: the rate the page keeps up (the selected one
+  // unless a step takes longer than a frame allows).
+  $('steprate').textContent = playing ? stepStamps.length + ' steps/s (target ' + rate + ')' : 'paused';
+  const sl = call('tb_sensor_events');
+  if (sl >= 0) {
+    const ev = JSON.parse(text(call('tb_text_ptr'), sl));
+    $('sensors').textContent = ev.begin + ' begin, ' + ev.end + ' end';
+    $('sensorlog').textContent = ev.log.slice().reverse().map(([f, b, s, v]) =>
+      'frame ' + f + ': body #' + v + (b ? ' entered' : ' left') + ' sensor #' + s).join('\n');
+  }
   $('hash').textContent = stateHash() + ' @ frame ' + frame;
   const noteLen = call('tb_scene_note');
   if (noteLen > 0 && !$('message').textContent) message(text(call('tb_text_ptr'), noteLen));
@@ -127,12 +144,12 @@ function updatePanel() {
   if (!native) {
     $('nativehash').textContent = '–';
     n.textContent = 'no native-hashes.json (run scripts/testbed.sh)';
-  } else if (substeps !== DEFAULT_SUBSTEPS) {
+  } else if (loadedSubsteps !== DEFAULT_SUBSTEPS) {
     $('nativehash').textContent = '–';
     n.textContent = 'n/a: native hashes are for 4 sub-steps';
   } else if (call('tb_interacted') !== 0) {
     $('nativehash').textContent = '–';
-    n.textContent = 'n/a: you changed the world (spawn or drag)';
+    n.textContent = 'n/a: you changed the world (spawn, drag or sub-steps)';
   } else if (nativeNote) {
     $('nativehash').textContent = nativeNote.want + ' @ frame ' + nativeNote.frame;
     const ok = nativeNote.want === nativeNote.got;
@@ -177,8 +194,8 @@ function draw() {
   for (let i = 0; i < count; i++) {
     const o = i * stride;
     const kind = d[o], flags = d[o + 1], x = d[o + 2], y = d[o + 3], a = d[o + 4], r = d[o + 5], n = d[o + 6];
-    const isStatic = flags & 1, held = flags & 4;
-    const fill = isStatic ? '#9aa0a6' : (flags & 2) ? '#6cc4a1' : FILL[kind] || '#ccc';
+    const isStatic = flags & 1, held = flags & 4, sensor = flags & 8;
+    const fill = sensor ? 'rgba(79, 157, 217, 0.25)' : isStatic ? '#9aa0a6' : (flags & 2) ? '#6cc4a1' : FILL[kind] || '#ccc';
     ctx.fillStyle = held ? '#e8505b' : fill;
     ctx.strokeStyle = '#333';
     if (kind === 0) {
@@ -253,7 +270,8 @@ function setupUi() {
     const v = Number($('substeps').value);
     if (!(v >= 1 && v <= info.max_substeps)) { message('sub-steps must be 1 to ' + info.max_substeps); return; }
     substeps = v;
-    load(scene);
+    // The running world changes from the next frame (recorded: rollback replays it).
+    if (call('tb_set_substeps', v) < 0) message('sub-steps: ' + lastError());
   });
   $('rate').addEventListener('change', () => { rate = Number($('rate').value); });
   $('rollback').addEventListener('click', () => {
@@ -269,11 +287,13 @@ function setupUi() {
     const r = call('tb_drag_begin', x, y);
     if (r === 0) { dragging = true; canvas.setPointerCapture(e.pointerId); message(''); return; }
     const why = lastError();
-    if (why.startsWith('no body')) {
+    if (r === E.NOT_DRAGGABLE && why.startsWith('no body')) {
+      // Empty space: a click spawns.
       const s = call('tb_spawn', Number($('spawnkind').value), x, y);
       message(s < 0 ? 'cannot spawn: ' + lastError() : '');
     } else {
-      message(why);
+      // A static body (or no room for the drag joint): said on the page, nothing else.
+      message(r === E.NOT_DRAGGABLE ? 'not draggable: ' + why : why);
     }
   });
   canvas.addEventListener('pointermove', (e) => { if (dragging) { const [x, y] = pos(e); call('tb_drag_move', x, y); } });
@@ -365,6 +385,40 @@ async function runCheck() {
       line(h1 === h2, `same input, same hash: ${h1} ${h2}`);
       r = call('tb_rollback');
       line(r > 0, `rollback through spawns and a drag: ${r > 0 ? r + ' frames, same hash' : lastError()}`);
+      // The scripted drag (a drag, a throw, sub-step changes, a spawn) played
+      // through the page's controls: the same hash as the native build.
+      const sc = info.script;
+      const si = info.scenes.findIndex((x) => x.name === sc.scene);
+      if (call('tb_load', si, DEFAULT_SUBSTEPS) < 0) throw new Error('script load: ' + lastError());
+      for (const a of sc.actions) {
+        let rr = 0;
+        switch (a[0]) {
+          case 'step': rr = call('tb_step', a[1]); break;
+          case 'begin': rr = call('tb_drag_begin', a[1], a[2]); break;
+          case 'move': rr = call('tb_drag_move', a[1], a[2]); break;
+          case 'end': rr = call('tb_drag_end'); break;
+          case 'spawn': rr = call('tb_spawn', a[1], a[2], a[3]); break;
+          case 'substeps': rr = call('tb_set_substeps', a[1]); break;
+          default: throw new Error('script: unknown action ' + a[0]);
+        }
+        if (rr < 0) throw new Error('script: ' + a[0] + ': ' + lastError());
+      }
+      const sh = stateHash();
+      const want = native && native.script && native.script.hash;
+      line(sh === want && call('tb_frame') === native.script.frames,
+        `scripted drag on ${sc.scene} (${sc.actions.length} actions, ${call('tb_frame')} frames, a throw, ` +
+        `sub-steps 4→8→4): hash ${sh} native ${want}`);
+      r = call('tb_rollback');
+      line(r > 0, `rollback through the scripted drag: ${r > 0 ? r + ' frames, same hash' : lastError()}`);
+      // The sensors scene reports its events on the page.
+      const sens = info.scenes.findIndex((x) => x.name === 'sensors');
+      call('tb_load', sens, DEFAULT_SUBSTEPS);
+      call('tb_step', 240);
+      const evLen = call('tb_sensor_events'); // (writes the text buffer: read its pointer after)
+      const ev = JSON.parse(text(call('tb_text_ptr'), evLen));
+      line(ev.begin > 0 && ev.end > 0 && ev.log.length > 0,
+        `sensors: ${ev.begin} begin and ${ev.end} end events in 240 frames`);
+      const live = stateHash();
       // A trap is caught and reported: a second instance is made to trap.
       const saved = wasm;
       wasm = await instantiate();
@@ -373,7 +427,7 @@ async function runCheck() {
       line(caught && trapped && $('trap').style.display === 'block', 'a trap is detected and shown');
       // Back to the live instance for the rest.
       wasm = saved; trapped = false; $('trap').style.display = 'none';
-      line(stateHash() === h2, 'the first instance still runs after the other trapped');
+      line(stateHash() === live, 'the first instance still runs after the other trapped');
     } catch (e) {
       line(false, 'error paths: ' + e.message);
     }

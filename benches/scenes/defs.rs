@@ -27,10 +27,10 @@ pub fn plain_world(bounds: Rect, caps: Capacities) -> Result<World<'static>, arp
     World::with_capacities(WorldDef::with_bounds(bounds), caps)
 }
 
-/// A world for `bodies` bodies and `joints` joints, gravity (0, −10).
-fn world(make: MakeWorld, bodies: usize, joints: usize) -> Result<World<'static>, arphysics::Error> {
-    let bounds = Rect::from_corners(v(-1000.0, -100.0), v(1000.0, 1000.0));
-    let caps = Capacities {
+/// Capacities for `bodies` bodies and `joints` joints: 16 paths, 4 pairs a body,
+/// 64 callbacks and events, no chains (the testbed's feature scenes use them too).
+pub fn capacities(bodies: usize, joints: usize) -> Capacities {
+    Capacities {
         bodies,
         paths: 16,
         contacts: bodies * 4,
@@ -38,8 +38,13 @@ fn world(make: MakeWorld, bodies: usize, joints: usize) -> Result<World<'static>
         post_step_callbacks: 64,
         events: 64,
         chain_vertices: 0,
-    };
-    let mut w = make(bounds, caps)?;
+    }
+}
+
+/// A world for `bodies` bodies and `joints` joints, gravity (0, −10).
+fn world(make: MakeWorld, bodies: usize, joints: usize) -> Result<World<'static>, arphysics::Error> {
+    let bounds = Rect::from_corners(v(-1000.0, -100.0), v(1000.0, 1000.0));
+    let mut w = make(bounds, capacities(bodies, joints))?;
     w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0)))?;
     Ok(w)
 }

@@ -17,11 +17,11 @@ use arphysics::index::SortAndSweepIndex;
 use arphysics::query::{QueryFilter, QueryShape, RayHit};
 use arphysics::CollisionFilter;
 use arphysics::{
-    Arbiter, Body, BodyDef, BodyHandle, BodyType, CallbackContext, Capacities, Capsule, ConstraintHandle,
-    Error, FnHandler, ForceGenerator, Generator, GeneratorHandle, GeneratorMut, GravityForceGenerator,
-    GravityToPointForceGenerator, Handle, Handler, Hook, Index, Joint, JointDef, JointHandle, JointKind,
-    LinearForceGenerator, MaxTorque, Motor, PairSink, PathHandle, PolygonPath, Proxy, Rect, Rot, Scalar,
-    Segment, Shape, SpatialIndex, Storage, Transform, Vector2, World, WorldDef,
+    Arbiter, Body, BodyDef, BodyHandle, BodyType, CallbackContext, Capacities, Capsule, ChainPath,
+    ConstraintHandle, Error, FnHandler, ForceGenerator, Generator, GeneratorHandle, GeneratorMut,
+    GravityForceGenerator, GravityToPointForceGenerator, Handle, Handler, Hook, Index, Joint, JointDef,
+    JointHandle, JointKind, LinearForceGenerator, MaxTorque, Motor, PairSink, PathHandle, PolygonPath, Proxy,
+    Rect, Rot, Scalar, Segment, Shape, SpatialIndex, Storage, Transform, Vector2, World, WorldDef,
 };
 
 /// Most ops a run executes (keeps one input's run short).
@@ -230,7 +230,8 @@ pub struct WorldSpec {
     pub contact_push_speed: Option<S>,
     pub restitution_threshold: Option<S>,
     pub arbiter_persistence: Option<u32>,
-    /// Capacities: bodies % 33, paths % 17, contacts % 129, joints % 33.
+    /// Capacities: bodies % 33, paths % 17, contacts % 129, joints % 33;
+    /// chain vertices 4 × (paths % 17).
     pub bodies: u8,
     pub paths: u8,
     pub contacts: u8,
@@ -279,7 +280,7 @@ impl WorldSpec {
             joints: usize::from(self.joints % 33),
             post_step_callbacks: arphysics::handler::DEFAULT_POST_STEP_CALLBACKS,
             events: 16,
-            chain_vertices: 0,
+            chain_vertices: 4 * usize::from(self.paths % 17),
         }
     }
 }
@@ -555,6 +556,8 @@ pub enum KindSpec {
     Rope(S),
     Pivot(Option<(S, S)>, Option<MotorSpec>),
     Weld,
+    /// hertz, damping ratio, force limit (only valid to a world point).
+    Target(S, S, S),
 }
 
 impl KindSpec {
@@ -571,6 +574,9 @@ impl KindSpec {
                 motor: motor.map(MotorSpec::get),
             },
             Self::Weld => JointKind::Weld,
+            Self::Target(f, z, m) => {
+                JointKind::Target { hertz: f.get(), damping_ratio: z.get(), max_force: m.get() }
+            }
         }
     }
 }
@@ -669,6 +675,14 @@ pub enum Op {
     AddJoint(JointSpec),
     RemoveJoint(HandleRef),
     SetMotor(HandleRef, Option<MotorSpec>),
+    /// `set_joint_target` (any joint kind: the others refuse it).
+    SetJointTarget(HandleRef, Point),
+    /// `set_substeps` with n % 20 (0 and 17 … 19 are out of range).
+    SetSubsteps(u8),
+    /// `add_chain` from the first 2 + n % 5 of the points (a loop if `closed`),
+    /// then a static chain body on it (`BodyDef::chain`); the outcome is
+    /// `add_chain`'s.
+    AddChain([Point; 6], u8, bool),
     AddConstraint(ConstraintSpec),
     RemoveConstraint(HandleRef),
     AddHandler(u8, u8, HandlerSpec),
@@ -807,14 +821,16 @@ pub fn reseal(buf: &mut [u8]) {
 
 impl Op {
     /// True for ops whose effect a snapshot captures (body, generator and joint
-    /// state, steps): replayed after a `restore` they must give the same bits.
-    /// Paths, hooks (handlers, game constraints, custom generators and indexes,
-    /// callbacks) and snapshots themselves are not state.
+    /// state, the sub-step count, steps): replayed after a `restore` they must
+    /// give the same bits. Paths and chains (the shapes a snapshot only checks
+    /// by checksum), hooks (handlers, game constraints, custom generators and
+    /// indexes, callbacks) and snapshots themselves are not state.
     #[must_use]
     pub fn is_state_op(&self) -> bool {
         match self {
             Self::AddPath(_)
             | Self::RemovePath(_)
+            | Self::AddChain(..)
             | Self::AddConstraint(_)
             | Self::RemoveConstraint(_)
             | Self::AddHandler(..)
@@ -1515,6 +1531,31 @@ impl<'w> Runner<'w> {
                 handle_outcome(r)
             }
             Op::RemoveJoint(h) => unit_outcome(self.world.remove_joint(h.get(&self.joints))),
+            Op::SetJointTarget(h, p) => {
+                let p = self.point(*p);
+                unit_outcome(self.world.set_joint_target(h.get(&self.joints), p))
+            }
+            Op::SetSubsteps(n) => unit_outcome(self.world.set_substeps(u32::from(n % 20))),
+            Op::AddChain(points, n, closed) => {
+                let mut pts = [Vector2::ZERO; 6];
+                for (dst, &p) in pts.iter_mut().zip(points.iter()) {
+                    *dst = self.point(p);
+                }
+                let pts = pts.get(..2 + usize::from(n % 5)).unwrap_or(&[]);
+                let path = if *closed { ChainPath::closed(pts) } else { ChainPath::open(pts) };
+                // Two calls: the outcome is the chain's (its slab keeps the
+                // chain whatever the body does); a full body store for the
+                // chain's body is a capacity hit the outcome does not show.
+                let chain = path.and_then(|path| self.world.add_chain(path));
+                if let Ok(c) = chain {
+                    match self.world.add_body(BodyDef::chain(c)) {
+                        Ok(h) => self.bodies.push(h),
+                        Err(Error::CapacityFull { .. }) => CAPACITY_HIT.with(|c| c.set(true)),
+                        Err(_) => {}
+                    }
+                }
+                unit_outcome(chain)
+            }
             Op::SetMotor(h, m) => unit_outcome(
                 self.world.joint_mut(h.get(&self.joints)).and_then(|j| j.set_motor(m.map(MotorSpec::get))),
             ),

@@ -5,7 +5,8 @@
 use crate::body::{Body, BodyHandle};
 use crate::error::Error;
 use crate::limits::{
-    check_range, MAX_BODY_RADIUS, MAX_DAMPING, MAX_JOINT_LENGTH, MAX_MOTOR_SPEED, MAX_STIFFNESS,
+    check_range, MAX_BODY_RADIUS, MAX_DAMPING, MAX_DAMPING_RATIO, MAX_FORCE, MAX_JOINT_LENGTH,
+    MAX_MOTOR_SPEED, MAX_STIFFNESS, MAX_TARGET_HERTZ,
 };
 use crate::math::scalar::{self, Scalar, ZERO};
 use crate::math::{Rect, Vector2};
@@ -72,6 +73,27 @@ pub enum JointKind {
     /// Glues the bodies: anchors together, relative angle fixed at its value at
     /// creation.
     Weld,
+    /// Pulls body A's anchor towards a world target point (Box2D's mouse joint):
+    /// a soft point constraint, a spring–damper given as a frequency and a
+    /// damping ratio (so it behaves the same whatever the body's mass: stiffness
+    /// m·ω², ω = 2π·`hertz`), whose force never exceeds `max_force`. Only with
+    /// [`JointDef::to_world`]: the target is the definition's world point, moved
+    /// by [`World::set_joint_target`](crate::World::set_joint_target). What a
+    /// game drags a body with (the testbed's mouse). The body turns about the
+    /// anchor, its spin softly damped as by Box2D v3's mouse joint
+    /// ([`TARGET_SPIN_HERTZ`](crate::constraint::TARGET_SPIN_HERTZ)); removing
+    /// the joint lets it fly on with its speed (a throw).
+    Target {
+        /// Frequency of the spring, Hz, in (0, [`MAX_TARGET_HERTZ`](crate::limits::MAX_TARGET_HERTZ)] (1,000).
+        hertz: Scalar,
+        /// Damping ratio (1: critically damped), in [0,
+        /// [`MAX_DAMPING_RATIO`](crate::limits::MAX_DAMPING_RATIO)] (100).
+        damping_ratio: Scalar,
+        /// Largest force, N, in [0, [`MAX_FORCE`](crate::limits::MAX_FORCE)]: the
+        /// accumulated impulse of each sub-step is clamped to `max_force`·h by
+        /// length.
+        max_force: Scalar,
+    },
 }
 
 /// Everything needed to create a joint.
@@ -217,6 +239,16 @@ pub(crate) fn validate_params(def: &JointDef) -> Result<(), Error> {
             validate_motor(motor)?;
         }
         JointKind::Weld => {}
+        JointKind::Target { hertz, damping_ratio, max_force } => {
+            if def.body_b.is_some() {
+                return Err(Error::InvalidOperation { what: "a target joint with a second body" });
+            }
+            if hertz <= ZERO || hertz > MAX_TARGET_HERTZ {
+                return Err(Error::OutOfRange { what: "hertz" });
+            }
+            check_range(damping_ratio, ZERO, MAX_DAMPING_RATIO, "damping ratio")?;
+            check_range(max_force, ZERO, MAX_FORCE, "max force")?;
+        }
     }
     if let Some(limit) = def.break_impulse {
         if limit <= ZERO {

@@ -20,6 +20,14 @@ pub const JOINT_HERTZ: Scalar = Scalar::from_int(60);
 /// Damping ratio of that correction (Box2D v3's joint default).
 pub const JOINT_DAMPING_RATIO: Scalar = Scalar::from_int(2);
 
+/// Frequency of a target joint's spin damping, Hz (Box2D v3's mouse joint):
+/// a soft angular row with no bias, so it only slows the body's spin (a body
+/// held off its centre stops swinging about the held point), with no angle
+/// to return to.
+pub const TARGET_SPIN_HERTZ: Scalar = Scalar::lit("0.5");
+/// Damping ratio of that spin damping (Box2D v3's mouse joint).
+pub const TARGET_SPIN_DAMPING_RATIO: Scalar = Scalar::lit("0.1");
+
 /// Marker type naming built-in joints in handles.
 #[derive(Debug)]
 pub enum JointMarker {}
@@ -75,6 +83,13 @@ impl Joint {
             *m = motor;
         }
         Ok(())
+    }
+
+    /// A target joint's world target point (`None` for other kinds); see
+    /// [`World::set_joint_target`](crate::World::set_joint_target).
+    #[must_use]
+    pub fn target(&self) -> Option<Vector2> {
+        matches!(self.def.kind, JointKind::Target { .. }).then_some(self.def.anchor_b)
     }
 }
 
@@ -136,6 +151,8 @@ impl Joint {
             }),
             ..row
         };
+        let mut soft = soft;
+        let (mut max_impulse, mut spin_damping) = (None, None);
         let (kind, motor, limits) = match self.def.kind {
             JointKind::Spring { stiffness, rest_length } => return spring(stiffness, ZERO, rest_length),
             JointKind::DampedSpring { stiffness, damping, rest_length } => {
@@ -147,6 +164,14 @@ impl Joint {
                 (ConstraintKind::Pivot { limits: limits.is_some(), motor: motor.is_some() }, motor, limits)
             }
             JointKind::Weld => (ConstraintKind::Weld, None, None),
+            JointKind::Target { hertz, damping_ratio, max_force } => {
+                // Its own spring, discretised for the sub-step, in place of the
+                // joints' stiff position correction.
+                soft = Softness::new(hertz, damping_ratio, h);
+                max_impulse = Some(max_force * h);
+                spin_damping = Some(Softness::new(TARGET_SPIN_HERTZ, TARGET_SPIN_DAMPING_RATIO, h));
+                (ConstraintKind::Target, None, None)
+            }
         };
         let motor = motor.map(|m| {
             let max = match m.max_torque {
@@ -160,10 +185,17 @@ impl Joint {
             inv_inertia: [ia, ib],
             anchors,
             world_point,
-            point: matches!(kind, ConstraintKind::Pivot { .. } | ConstraintKind::Weld),
-            angular: matches!(kind, ConstraintKind::Weld) || motor.is_some() || limits.is_some(),
+            point: matches!(
+                kind,
+                ConstraintKind::Pivot { .. } | ConstraintKind::Weld | ConstraintKind::Target
+            ),
+            angular: matches!(kind, ConstraintKind::Weld | ConstraintKind::Target)
+                || motor.is_some()
+                || limits.is_some(),
             motor,
             limits,
+            max_impulse,
+            spin_damping,
         };
         let angular = [self.angular_impulse, self.motor_impulse, self.limit_impulse];
         let lanes = JointLanes::prepare(&masses, sa, sb, soft, inv_h, self.impulse, angular);
@@ -192,7 +224,7 @@ impl Joint {
                             self.impulse.x = c.lanes.linear_impulse().x;
                         }
                     }
-                    ConstraintKind::Pivot { .. } | ConstraintKind::Weld => {
+                    ConstraintKind::Pivot { .. } | ConstraintKind::Weld | ConstraintKind::Target => {
                         if linear {
                             self.impulse = c.lanes.linear_impulse();
                         }

@@ -3,7 +3,9 @@
 //! The manual's three — [`JointKind::Spring`], [`JointKind::DampedSpring`] and
 //! [`JointKind::Rod`] — and the joints games expect from other engines:
 //! [`JointKind::Rope`] (maximum distance), [`JointKind::Pivot`] (revolute, with
-//! angle limits and a motor) and [`JointKind::Weld`]. Any of them can be breakable
+//! angle limits and a motor), [`JointKind::Weld`] and [`JointKind::Target`] (Box2D's
+//! mouse joint: a body pulled towards a world point the game moves, softly and
+//! with a force limit). Any of them can be breakable
 //! ([`JointDef::breakable`]). Games add their own by implementing [`Constraint`].
 //!
 //! # How they are solved
@@ -22,7 +24,11 @@
 //!   do: impulses in velocity units, masses as ratios (the format table is in
 //!   `src/solver/joint_lanes.rs`). Prepare turns the persistent impulses (N·s,
 //!   N·m·s, what the snapshot holds) into those units once per step, and the
-//!   end of the step turns them back.
+//!   end of the step turns them back;
+//! * a target joint is the pivot's point constraint to a world point with its
+//!   own spring (`hertz`, `damping_ratio`) in place of that correction, soft in
+//!   the relax sweep too, its accumulated impulse clamped by length so its
+//!   force stays within `max_force`, and a soft spin damping (Box2D v3's).
 //!
 //! The sub-steps work on a row per joint in a dense scratch array of the
 //! solver (`row.rs`), built at prepare in joint-slot order: the joints
@@ -46,7 +52,7 @@
 //! [`JointDef`] and its kinds are in `def.rs`, the runtime [`Joint`] in
 //! `joint.rs`, its row in the solver's dense joint array and the dispatch of
 //! each solver stage in `row.rs`, the maths the joints share in `maths.rs`, one file
-//! per kind (`spring.rs`, `rod.rs`, `pivot.rs`, `weld.rs`), and the game's
+//! per kind (`spring.rs`, `rod.rs`, `pivot.rs`, `weld.rs`, `target.rs`), and the game's
 //! [`Constraint`] in `user.rs`.
 
 mod def;
@@ -56,12 +62,16 @@ mod pivot;
 mod rod;
 mod row;
 mod spring;
+mod target;
 mod user;
 mod weld;
 
 pub(crate) use def::{validate, validate_params};
 pub use def::{JointDef, JointKind, MaxTorque, Motor};
-pub use joint::{Joint, JointHandle, JointMarker, JOINT_DAMPING_RATIO, JOINT_HERTZ};
+pub use joint::{
+    Joint, JointHandle, JointMarker, JOINT_DAMPING_RATIO, JOINT_HERTZ, TARGET_SPIN_DAMPING_RATIO,
+    TARGET_SPIN_HERTZ,
+};
 pub(crate) use maths::ground;
 pub(crate) use row::JointRow;
 pub use user::{Constraint, ConstraintHandle, ConstraintMarker, MAX_USER_CONSTRAINTS};

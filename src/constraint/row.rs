@@ -15,7 +15,7 @@ use crate::math::{Rot, Vector2};
 use crate::solver::{Bias, BodyLanes, JointLanes, SolverBody};
 
 use super::rod::Distance;
-use super::{pivot, rod, spring, weld};
+use super::{pivot, rod, spring, target, weld};
 
 /// A built-in joint's row for one step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,7 +40,8 @@ impl JointRow {
 pub(crate) enum RowSolve {
     /// A spring or damped spring: a force, in `Scalar`.
     Spring(SpringRow),
-    /// A rod, rope, pivot or weld: a constraint in the solver's lane formats.
+    /// A rod, rope, pivot, weld or target joint: a constraint in the solver's
+    /// lane formats.
     Constraint(ConstraintRow),
 }
 
@@ -82,9 +83,10 @@ pub(crate) enum ConstraintKind {
     Rope { max_length: Scalar },
     Pivot { limits: bool, motor: bool },
     Weld,
+    Target,
 }
 
-/// A rod's, rope's, pivot's or weld's data for the step.
+/// A rod's, rope's, pivot's, weld's or target joint's data for the step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct ConstraintRow {
     pub(crate) kind: ConstraintKind,
@@ -108,6 +110,7 @@ impl ConstraintRow {
                 }
             }
             ConstraintKind::Weld => self.lanes.set_angle(pivot::relative_angle(self.reference, a, b)),
+            ConstraintKind::Target => {}
         }
     }
 
@@ -124,6 +127,10 @@ impl ConstraintRow {
                 l.warm_point(la, lb);
                 l.warm_weld(la, lb);
             }
+            ConstraintKind::Target => {
+                l.warm_point(la, lb);
+                l.warm_weld(la, lb);
+            }
         }
     }
 
@@ -136,6 +143,7 @@ impl ConstraintRow {
                 pivot::solve(l, la, lb, limits, motor, world_point, bias)
             }
             ConstraintKind::Weld => weld::solve(l, la, lb, bias),
+            ConstraintKind::Target => target::solve(l, la, lb),
         }
     }
 }

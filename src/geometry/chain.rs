@@ -350,8 +350,9 @@ fn corners_box(r: Rect, map: impl Fn(Vector2) -> Vector2) -> Rect {
 mod tests {
     use super::*;
 
-    fn slab(n: usize) -> ChainSlab<'static> {
-        ChainSlab::new(ManagedSlice::Owned(alloc::vec![ChainNode::EMPTY; n]))
+    /// A slab on caller storage: these tests also run without `alloc`.
+    fn slab(nodes: &mut [ChainNode]) -> ChainSlab<'_> {
+        ChainSlab::new(ManagedSlice::Borrowed(nodes))
     }
 
     #[test]
@@ -368,7 +369,8 @@ mod tests {
             ChainPath::closed(&[p(0, 0), p(1, 0), p(0, 1), p(0, 0)]),
             Err(Error::OutOfRange { what: "segment length" })
         );
-        let mut s = slab(3);
+        let mut nodes = [ChainNode::EMPTY; 3];
+        let mut s = slab(&mut nodes);
         let four = [p(0, 0), p(1, 0), p(2, 0), p(3, 0)];
         let path = ChainPath::open(&four).expect("valid");
         assert_eq!(s.add(&path), Err(Error::CapacityFull { what: "chain vertex" }));
@@ -378,21 +380,25 @@ mod tests {
     #[test]
     fn the_tree_finds_exactly_the_links_a_box_meets_in_order() {
         // A zigzag of 37 links.
-        let points: alloc::vec::Vec<Vector2> =
-            (0..38).map(|i| Vector2::from_int(i, if i % 2 == 0 { 0 } else { 1 })).collect();
-        let mut s = slab(40);
+        let points: [Vector2; 38] = core::array::from_fn(|i| Vector2::from_int(i as i32, (i % 2) as i32));
+        let mut nodes = [ChainNode::EMPTY; 40];
+        let mut s = slab(&mut nodes);
         let h = s.add(&ChainPath::open(&points).expect("valid")).expect("room");
         for (x0, x1) in [(0, 0), (3, 7), (-5, 2), (30, 50), (12, 12)] {
             let q = Rect { min: Vector2::from_int(x0, 0), max: Vector2::from_int(x1, 1) };
-            let mut found = alloc::vec::Vec::new();
+            let (mut found, mut n_found) = ([0u32; 37], 0);
             let mut from = 0;
             while let Some(k) = s.next_link(h, from, q) {
-                found.push(k);
+                found[n_found] = k;
+                n_found += 1;
                 from = k + 1;
             }
-            let expected: alloc::vec::Vec<u32> =
-                (0..37u32).filter(|&i| (i as i32) <= x1 && (i as i32 + 1) >= x0).collect();
-            assert_eq!(found, expected, "{x0}..{x1}");
+            let (mut expected, mut n_expected) = ([0u32; 37], 0);
+            for i in (0..37u32).filter(|&i| (i as i32) <= x1 && (i as i32 + 1) >= x0) {
+                expected[n_expected] = i;
+                n_expected += 1;
+            }
+            assert_eq!(found[..n_found], expected[..n_expected], "{x0}..{x1}");
         }
         let b = s.local_bounds(h).expect("valid");
         assert_eq!((b.min, b.max), (Vector2::from_int(0, 0), Vector2::from_int(37, 1)));
@@ -401,7 +407,8 @@ mod tests {
     #[test]
     fn links_know_their_neighbours_and_free_ends() {
         let pts = [Vector2::from_int(0, 0), Vector2::from_int(1, 0), Vector2::from_int(2, 1)];
-        let mut s = slab(8);
+        let mut nodes = [ChainNode::EMPTY; 8];
+        let mut s = slab(&mut nodes);
         let open = s.add(&ChainPath::open(&pts).expect("valid")).expect("room");
         let l0 = s.link(open, 0).expect("link");
         assert_eq!((l0.ghost1, l0.ghost2), (pts[0], pts[2]));

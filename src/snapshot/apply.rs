@@ -26,6 +26,7 @@ fn slot_link(link: u32) -> u32 {
 /// checked by `validate` (a failed read here leaves that slot empty).
 pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
     w.step_count = l.step_count;
+    w.def.substeps = l.def.substeps;
     // Bodies.
     let mut recips = Recips::new();
     for i in 0..l.bodies.used {

@@ -520,6 +520,7 @@ fn read_joint(c: &mut Cursor<'_>) -> Result<Joint, Error> {
             }
         }
         5 => JointKind::Weld,
+        6 => JointKind::Target { hertz: c.scalar()?, damping_ratio: c.scalar()?, max_force: c.scalar()? },
         _ => return Err(invalid("unknown joint kind")),
     };
     let def = JointDef {

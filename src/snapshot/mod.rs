@@ -9,14 +9,14 @@
 //! endianness or pointer width, nor on the world's capacities. Integers are their
 //! little-endian bytes; a `Scalar` is its raw 64-bit two's-complement bits.
 //!
-//! Layout (format [`VERSION`] 3), in order:
+//! Layout (format [`VERSION`] 4), in order:
 //! 1. framing, [`HEADER`] = 16 bytes: `ARPS`, the version (u32), and the
 //!    snapshot's total length in bytes (u64, trailer included);
 //! 2. the world: step count, world settings, a checksum of the polygon paths;
 //! 3. the table of body properties (shape; type with the bullet, sensor and
 //!    fixed-rotation flags; mass, inertia, friction, restitution, groups,
 //!    level, user data; linear and angular damping, gravity scale; filter
-//!    category, mask and group index: 102 bytes per run of consecutive bodies
+//!    category, mask and group index: [`PROPS_RECORD`] = 118 bytes per run of consecutive bodies
 //!    that share them);
 //! 4. the body allocator and one 64-byte record per body slot (generation,
 //!    free-list link or flags and properties index, position, rotation,
@@ -28,7 +28,12 @@
 //!    bit 31 of their count is set ([`ARBITER_LINKS`]) and the records are
 //!    followed by each arbiter's sub-key word (u32: the chain link in bits
 //!    0–19, the shape index on body A in bits 26–28 and on body B in 29–31);
-//! 7. the joint allocator and the joints (160 bytes each);
+//! 7. the joint allocator and the joints (160 bytes each: the definition with
+//!    its kind as a tag, 0 spring to 5 weld and 6 the target joint, whose
+//!    target is the definition's world point, then the reference angle and
+//!    the accumulated impulses; the target joint's tag fits the same record,
+//!    so the format version did not change for it: a build without it
+//!    rejects such a snapshot as an unknown joint kind);
 //! 8. the trailer, [`TRAILER`] = 8 bytes: the XXH64 checksum (seed 0) of every
 //!    byte before it.
 //!

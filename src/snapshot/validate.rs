@@ -128,10 +128,14 @@ fn check_targets(_: &Targets) -> Result<(), Error> {
 /// Everything `apply` relies on, checked without changing the world.
 pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
     // `strict_capacity`, like the capacities, belongs to the restoring world,
-    // not to the state: it is not encoded; compare the rest.
-    if (crate::WorldDef { strict_capacity: w.def.strict_capacity, ..l.def }) != w.def {
+    // not to the state: it is not encoded. The sub-step count is state (a game
+    // changes it with `set_substeps`): it comes back with the snapshot, checked
+    // as `World::new` checks it. Compare the rest.
+    let def = crate::WorldDef { strict_capacity: w.def.strict_capacity, ..l.def };
+    if (crate::WorldDef { substeps: w.def.substeps, ..def }) != w.def {
         return Err(Error::SnapshotMismatch { what: "world definition" });
     }
+    def.validate().map_err(|_| invalid("sub-steps out of range"))?;
     if l.paths != paths_checksum(w) {
         return Err(Error::SnapshotMismatch { what: "polygon paths" });
     }

@@ -510,6 +510,12 @@ fn write_joint(s: &mut impl Sink, j: &Joint) {
             s.scalar(torque.unwrap_or(Scalar::ZERO));
         }
         JointKind::Weld => s.u8(5),
+        JointKind::Target { hertz, damping_ratio, max_force } => {
+            s.u8(6);
+            s.scalar(hertz);
+            s.scalar(damping_ratio);
+            s.scalar(max_force);
+        }
     }
 }
 

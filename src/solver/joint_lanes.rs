@@ -27,6 +27,14 @@
 //! * an angular impulse L (N·m·s; motor, limits, the weld's angle) is carried as
 //!   L̂ = L·(1/I_A + 1/I_B), the change of relative spin it makes (rad/s). It
 //!   moves a rim speed by α·L̂, α = r_b·(1/I)/(1/I_A + 1/I_B) ≤ r_b ≤ 128 m.
+//! * a target joint's force limit becomes the largest |λ̂| of its point
+//!   constraint, `max_force`·h·s (Q16.16, like λ̂); after every iteration the
+//!   accumulated λ̂ is scaled back to it by length, the length being the
+//!   integer square root (rounded up) of the exact 64-bit sum of squares, so
+//!   the clamp is the same on every target and never overshoots the limit.
+//!   Its softness is its own spring's, not the joints' position correction.
+//!   Its spin damping (Box2D v3's: a soft angular row with no bias, 0.5 Hz,
+//!   damping ratio 0.1) keeps its scales in the pivot's `limits` field.
 //!
 //! The anchors' arms follow the bodies' rotation: once per sub-step, after the
 //! positions are integrated (and at prepare for the first sub-step), each
@@ -189,6 +197,24 @@ fn point_mass(
     Some([k22 * inv, -(k12 * inv), k11 * inv])
 }
 
+/// `v` scaled down to length `max` (≥ 0) when longer, in integers: the
+/// length is the integer square root, rounded up, of the exact 64-bit sum of
+/// squares (|v| components ≤ 2³⁰ after `narrow`, so the sum fits), and each
+/// component is scaled by max/len rounding towards zero, so the result is
+/// never longer than `max` and the same on every target.
+fn clamp_length(v: [i32; 2], max: i32) -> [i32; 2] {
+    let [x, y] = v.map(i64::from);
+    let sq = (x * x + y * y).unsigned_abs();
+    let floor = sq.isqrt();
+    let len = (if floor * floor < sq { floor + 1 } else { floor }) as i64;
+    let max = i64::from(max.max(0));
+    if len <= max {
+        return v;
+    }
+    // len > max ≥ 0, and |x|·max ≤ 2³⁰·2³⁰.
+    [(x * max / len) as i32, (y * max / len) as i32]
+}
+
 /// One body's side of a joint: its ratios for the step and its arm at the
 /// current pose.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -334,10 +360,12 @@ pub(crate) struct JointLanes {
     axis: Axis,
     /// Relative angle (rad, Q4.28), when measured.
     angle: i32,
-    /// A pivot's limits (rad, Q4.28): lower, upper.
+    /// A pivot's limits (rad, Q4.28): lower, upper; for a target joint the
+    /// mass and impulse scales of its spin damping (Q2.30).
     limits: [i32; 2],
     /// A pivot motor's target speed (rad/s, Q16.16) and largest accumulated
-    /// impulse (Q16.16).
+    /// impulse (Q16.16); for a target joint (no motor), [0, its largest |λ̂|
+    /// (Q16.16): `max_force`·h·s], so the row stays the size it was.
     motor: [i32; 2],
     /// Accumulated linear impulse λ̂ (Q16.16): point (x, y) or axial (x).
     lambda: [i32; 2],
@@ -377,6 +405,11 @@ pub(crate) struct JointMasses {
     pub(crate) motor: Option<(Scalar, Option<Scalar>)>,
     /// A pivot's limits (rad).
     pub(crate) limits: Option<(Scalar, Scalar)>,
+    /// A target joint's largest linear impulse per sub-step (N·s): its
+    /// accumulated point impulse is clamped to it by length.
+    pub(crate) max_impulse: Option<Scalar>,
+    /// A target joint's spin damping (a soft row with no bias).
+    pub(crate) spin_damping: Option<Softness>,
 }
 
 impl JointLanes {
@@ -437,6 +470,17 @@ impl JointLanes {
         }
         let v = |x: Scalar| from_scalar(x, FV, i64::from(LAMBDA_MAX >> FV));
         j.lambda = [v(impulse.x * s), v(impulse.y * s)];
+        if let Some(d) = m.spin_damping {
+            // A target joint has no limits: the field holds the damping's
+            // scales (Q2.30) instead, so the row stays the size it was.
+            let d = LaneSoft::new(d);
+            j.limits = [d.mass_scale, d.impulse_scale];
+        }
+        if let Some(max) = m.max_impulse {
+            // Rounded half up like every value entering the lanes; the clamp
+            // by length below keeps |λ̂| within it.
+            j.motor = [0, v(max * s).max(0)];
+        }
         if rows {
             j.ang = [v(angular[0] * k), v(angular[1] * k), v(angular[2] * k)];
         }
@@ -536,6 +580,20 @@ impl JointLanes {
     /// coincide.
     #[inline]
     pub(crate) fn solve_point(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes, bias: Bias) {
+        self.point_row(la, lb, bias, false);
+    }
+
+    /// One iteration of a target joint: the point constraint, always soft and
+    /// biased (its own spring), the accumulated λ̂ clamped by length to the
+    /// force limit.
+    #[inline]
+    pub(crate) fn solve_target(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes) {
+        self.point_row(la, lb, Bias::On, true);
+    }
+
+    /// The point row; with `clamp`, |λ̂| ≤ a target joint's largest (`motor[1]`).
+    #[inline(always)]
+    fn point_row(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes, bias: Bias, clamp: bool) {
         if !self.linear {
             return;
         }
@@ -547,14 +605,15 @@ impl JointLanes {
         let [m11, m12, m22] = self.m;
         let mu =
             [wide::<FU>(m11, u[0]) + wide::<FU>(m12, u[1]), wide::<FU>(m12, u[0]) + wide::<FU>(m22, u[1])];
-        let mut applied = [0; 2];
+        let old = self.lambda;
         for k in 0..2 {
-            let old = self.lambda[k];
-            let delta = -scale(mu[k], sm) - wide::<FU>(si, old);
-            let new = narrow(i64::from(old) + delta, i64::from(LAMBDA_MAX));
-            self.lambda[k] = new;
-            applied[k] = new.wrapping_sub(old);
+            let delta = -scale(mu[k], sm) - wide::<FU>(si, old[k]);
+            self.lambda[k] = narrow(i64::from(old[k]) + delta, i64::from(LAMBDA_MAX));
         }
+        if clamp {
+            self.lambda = clamp_length(self.lambda, self.motor[1]);
+        }
+        let applied = [self.lambda[0].wrapping_sub(old[0]), self.lambda[1].wrapping_sub(old[1])];
         self.apply_point(la, lb, applied);
     }
 
@@ -655,8 +714,26 @@ impl JointLanes {
         if !self.angular {
             return;
         }
-        let rate = self.relative_spin(la, lb);
         let (b, sm, si) = self.soft.row::<{ FT + FQ - FV }>(self.angle, bias);
+        self.angular_row(la, lb, b, sm, si);
+    }
+
+    /// A target joint's spin damping: a soft row with no bias driving the
+    /// relative spin to zero, with the scales prepare put in `limits` (a
+    /// target joint has no limits).
+    #[inline]
+    pub(crate) fn solve_spin_damping(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes) {
+        if !self.angular {
+            return;
+        }
+        let [sm, si] = self.limits;
+        self.angular_row(la, lb, 0, sm, si);
+    }
+
+    /// The main angular row: λ̂ += −s_m·(ω_B − ω_A + b) − s_i·λ̂.
+    #[inline(always)]
+    fn angular_row(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes, b: i64, sm: i32, si: i32) {
+        let rate = self.relative_spin(la, lb);
         let old = self.ang[0];
         let delta = -scale(rate + b, sm) - wide::<FU>(si, old);
         let new = narrow(i64::from(old) + delta, i64::from(LAMBDA_MAX));

@@ -25,7 +25,9 @@ impl Softness {
     /// The stiffest spring a sub-step of 1/`inv_h` seconds resolves, Hz: Box2D
     /// caps contacts and joints at a quarter of the sub-step rate.
     pub(crate) fn max_hertz(inv_h: Scalar) -> Scalar {
-        inv_h * Scalar::lit("0.25")
+        // In a const block: `lit` parses its text, which at run time would link
+        // the parser into every build (8 KB of wasm).
+        inv_h * const { Scalar::lit("0.25") }
     }
 
     /// A spring of `hertz` and damping ratio `zeta`, discretised for sub-step `h`.

@@ -110,3 +110,21 @@ impl WorldDef {
         Ok(())
     }
 }
+
+impl crate::World<'_> {
+    /// Changes the solver's sub-steps per step, 1 to [`MAX_SUBSTEPS`], from the
+    /// next step on (what [`WorldDef::substeps`] set at creation). The count is
+    /// part of the snapshot and the state hash, and
+    /// [`restore`](crate::World::restore) brings back the count the snapshot
+    /// was taken with, so rolling back across a change replays bit for bit.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] with `"substeps"` for 0 or more than
+    /// [`MAX_SUBSTEPS`]; the world is unchanged.
+    pub fn set_substeps(&mut self, n: u32) -> Result<(), Error> {
+        let def = WorldDef { substeps: n, ..self.def };
+        def.validate()?;
+        self.def = def;
+        Ok(())
+    }
+}

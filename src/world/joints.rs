@@ -1,21 +1,27 @@
 //! The joint and game-constraint API of [`World`].
 
 use crate::body::BodyHandle;
-use crate::constraint::{self, Constraint, ConstraintHandle, Joint, JointDef, JointHandle, UserConstraint};
+use crate::constraint::{
+    self, Constraint, ConstraintHandle, Joint, JointDef, JointHandle, JointKind, UserConstraint,
+};
 use crate::error::Error;
 use crate::hook::Hook;
+use crate::math::Vector2;
 
 use super::{JointBreakFn, World};
 
 impl<'a> World<'a> {
-    /// Adds a built-in joint (spring, damped spring, rod, rope, pivot, weld).
+    /// Adds a built-in joint (spring, damped spring, rod, rope, pivot, weld,
+    /// target).
     ///
     /// # Errors
     /// [`Error::StaleHandle`] for an unknown body; [`Error::InvalidOperation`] for a
-    /// joint between a body and itself or between two bodies that cannot move;
+    /// joint between a body and itself or between two bodies that cannot move, or
+    /// a target joint with a second body;
     /// [`Error::OutOfRange`] for a negative stiffness or damping, a zero or huge
     /// length, inverted angle limits, a negative torque limit or break impulse, or
-    /// an anchor more than 256 m from its body's centre; [`Error::OutsideBounds`]
+    /// an anchor more than 256 m from its body's centre, a target joint's hertz,
+    /// damping ratio or force limit out of range; [`Error::OutsideBounds`]
     /// for a world anchor outside the world; [`Error::CapacityFull`].
     pub fn add_joint(&mut self, def: JointDef) -> Result<JointHandle, Error> {
         let a = self.bodies.get(def.body_a).ok_or(Error::StaleHandle)?;
@@ -51,6 +57,39 @@ impl<'a> World<'a> {
     /// [`Error::StaleHandle`].
     pub fn joint_mut(&mut self, h: JointHandle) -> Result<&mut Joint, Error> {
         self.joints.get_mut(h).ok_or(Error::StaleHandle)
+    }
+
+    /// Moves a target joint's world target point ([`JointKind::Target`]): what
+    /// a game calls each frame while the player drags. The joint pulls its
+    /// body towards the new point from the next step on; the target is part
+    /// of the snapshot and the state hash.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`] for a removed (or broken) joint;
+    /// [`Error::InvalidOperation`] for a joint of another kind;
+    /// [`Error::OutsideBounds`] for a point outside the world's bounds. The
+    /// world is unchanged on an error.
+    pub fn set_joint_target(&mut self, h: JointHandle, point: Vector2) -> Result<(), Error> {
+        let bounds = self.def.bounds;
+        let j = self.joints.get_mut(h).ok_or(Error::StaleHandle)?;
+        if !matches!(j.def.kind, JointKind::Target { .. }) {
+            return Err(Error::InvalidOperation { what: "a target on a joint that is not a target joint" });
+        }
+        if !bounds.contains(point) {
+            return Err(Error::OutsideBounds);
+        }
+        j.def.anchor_b = point;
+        Ok(())
+    }
+
+    /// A target joint's world target point.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`] for a removed joint; [`Error::InvalidOperation`]
+    /// for a joint of another kind.
+    pub fn joint_target(&self, h: JointHandle) -> Result<Vector2, Error> {
+        let j = self.joints.get(h).ok_or(Error::StaleHandle)?;
+        j.target().ok_or(Error::InvalidOperation { what: "a target on a joint that is not a target joint" })
     }
 
     /// Every joint with its handle, in slot order (the order they are solved in).

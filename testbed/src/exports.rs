@@ -40,9 +40,16 @@ fn with<R>(f: impl FnOnce(&mut State) -> R) -> R {
 /// Runs `f` on the loaded testbed; a failure becomes its (negative) code and
 /// its message the error text.
 fn on_testbed(f: impl FnOnce(&mut Testbed) -> Result<i32, Fail>) -> i32 {
+    on_loaded(|t, _, _| f(t))
+}
+
+/// [`on_testbed`], with the text buffer and the last rollback to write too.
+fn on_loaded(
+    f: impl FnOnce(&mut Testbed, &mut String, &mut Option<crate::Rollback>) -> Result<i32, Fail>,
+) -> i32 {
     with(|s| {
         let r = match s.testbed.as_mut() {
-            Some(t) => f(t),
+            Some(t) => f(t, &mut s.text, &mut s.last_rollback),
             None => Err(Fail { code: E_NOT_LOADED, message: "no scene loaded".into() }),
         };
         match r {
@@ -70,7 +77,8 @@ fn json_str(out: &mut String, s: &str) {
 
 /// Writes the scene list as JSON into the text buffer and returns its length
 /// (read it at [`tb_text_ptr`]): `{"stride":24,"ring":60,"max_substeps":16,
-/// "scenes":[{"name":…,"about":…,"view":[x0,y0,x1,y1],"check_frames":N},…]}`.
+/// "scenes":[{"name":…,"about":…,"view":[x0,y0,x1,y1],"check_frames":N},…],
+/// "script":…}` (the scripted drag, see [`crate::Script::to_json`]).
 #[no_mangle]
 pub extern "C" fn tb_info() -> i32 {
     with(|s| {
@@ -91,7 +99,9 @@ pub extern "C" fn tb_info() -> i32 {
             let (a, b, c, d) = sc.view;
             t.push_str(&format!(",\"view\":[{a},{b},{c},{d}],\"check_frames\":{}}}", sc.check_frames));
         }
-        t.push_str("]}");
+        t.push_str("],\"script\":");
+        t.push_str(&crate::drag_script().to_json());
+        t.push('}');
         s.text = t;
         s.text.len() as i32
     })
@@ -243,26 +253,43 @@ pub extern "C" fn tb_drag_end() -> i32 {
     })
 }
 
+/// Changes the running world's sub-step count (1 to 16), from the next frame.
+#[no_mangle]
+pub extern "C" fn tb_set_substeps(n: u32) -> i32 {
+    on_testbed(|t| t.set_substeps(n).map(|()| 0))
+}
+
+/// The running world's sub-step count.
+#[no_mangle]
+pub extern "C" fn tb_substeps() -> i32 {
+    on_testbed(|t| Ok(t.substeps() as i32))
+}
+
+/// Writes the sensor events as JSON into the text buffer and returns its
+/// length: `{"begin":N,"end":M,"log":[[frame,begin 0|1,sensor slot,visitor slot],…]}`
+/// (totals since loading, the last few events oldest first).
+#[no_mangle]
+pub extern "C" fn tb_sensor_events() -> i32 {
+    on_loaded(|t, text, _| {
+        let [begin, end] = t.sensor_totals();
+        let log: Vec<String> = t
+            .sensor_log()
+            .map(|n| format!("[{},{},{},{}]", n.frame, u8::from(n.begin), n.sensor, n.visitor))
+            .collect();
+        *text = format!("{{\"begin\":{begin},\"end\":{end},\"log\":[{}]}}", log.join(","));
+        Ok(text.len() as i32)
+    })
+}
+
 /// Rewinds up to 60 frames and re-simulates them; returns the frames rewound
 /// (the hashes before and after are in [`tb_rollback_hash`]). [`crate::E_MISMATCH`]
 /// if the hash came back different.
 #[no_mangle]
 pub extern "C" fn tb_rollback() -> i32 {
-    with(|s| {
-        let Some(t) = s.testbed.as_mut() else {
-            s.error = "no scene loaded".into();
-            return E_NOT_LOADED;
-        };
-        match t.rollback() {
-            Ok(r) => {
-                s.last_rollback = Some(r);
-                r.frames as i32
-            }
-            Err(e) => {
-                s.error = e.message;
-                e.code
-            }
-        }
+    on_loaded(|t, _, last| {
+        let r = t.rollback()?;
+        *last = Some(r);
+        Ok(r.frames as i32)
     })
 }
 

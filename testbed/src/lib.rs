@@ -20,8 +20,8 @@ use std::collections::VecDeque;
 use std::sync::atomic::{AtomicU32, Ordering};
 
 use arphysics::{
-    BodyDef, BodyHandle, Capacities, Error, JointDef, JointKind, PathHandle, PolygonPath, QueryFilter, Rect,
-    Scalar, Shape, Vector2, World, WorldDef,
+    BodyDef, BodyHandle, Capacities, Error, JointDef, JointHandle, JointKind, PathHandle, PolygonPath,
+    QueryFilter, Rect, Scalar, Shape, Vector2, World, WorldDef,
 };
 
 /// Bodies a scene's world has room for beyond what the scene needs (spawned by
@@ -46,12 +46,13 @@ static SUBSTEPS: AtomicU32 = AtomicU32::new(4);
 /// Floats per record in the draw list: kind, flags, x, y, angle, radius, point
 /// count, unused, then up to 8 points (x, y) in world coordinates. Kinds: 0
 /// circle, 1 polygon (radius: its rounding), 2 capsule (the two centres), 3
-/// segment, 4 the drag spring (held point, mouse), 5 a joint (its anchors).
+/// segment, 4 the drag's target joint (held point, mouse), 5 another joint (its
+/// anchors).
 pub const DRAW_STRIDE: usize = 24;
 
 /// A scene's world: its bounds and capacities, with the testbed's sub-step
-/// count, room for [`SPAWN_ROOM`] more bodies and one more joint (the drag
-/// spring). Called by every scene builder (build.rs routes the demo's to it).
+/// count, room for [`SPAWN_ROOM`] more bodies and one more joint (the drag's
+/// target joint). Called by every scene builder (build.rs routes the demo's to it).
 ///
 /// # Errors
 /// What [`World::with_capacities`] fails with.
@@ -109,8 +110,8 @@ impl From<Error> for Fail {
     }
 }
 
-/// A drag in progress: a body, the point of it held (body frame) and where the
-/// mouse is (world).
+/// A drag in progress: a body, the point of it held (body frame), where the
+/// mouse is (world) and the engine's target joint pulling the one to the other.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Drag {
     /// The body held.
@@ -119,6 +120,40 @@ pub struct Drag {
     pub anchor: Vector2,
     /// The mouse, in the world.
     pub target: Vector2,
+    /// The target joint (`JointKind::Target`) from the held point to the mouse.
+    pub joint: JointHandle,
+}
+
+/// The drag's target joint: a 5 Hz spring, damping ratio 0.7, at most 1,000 N
+/// per kilogram of the body held (100 g: it lifts anything, yet a body pinned
+/// under others cannot be torn out at any speed). Box2D's samples use the same.
+pub const DRAG_HERTZ: Scalar = Scalar::lit("5");
+/// The drag's damping ratio.
+pub const DRAG_DAMPING_RATIO: Scalar = Scalar::lit("0.7");
+/// The drag's force limit per kilogram, N/kg.
+pub const DRAG_FORCE_PER_KG: Scalar = Scalar::lit("1000");
+
+/// A user's input, applied to the world when it comes and recorded with the
+/// frame it came before, so a rollback replays it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Input {
+    /// A body spawned by a click.
+    Spawn(Spawn),
+    /// Took hold of `body` at `anchor` (body frame), the mouse at `target`.
+    DragBegin {
+        /// The body.
+        body: BodyHandle,
+        /// The point held, body frame.
+        anchor: Vector2,
+        /// The mouse.
+        target: Vector2,
+    },
+    /// The mouse moved to this point (inside the bounds).
+    DragMove(Vector2),
+    /// Let go.
+    DragEnd,
+    /// The sub-step count changed.
+    Substeps(u32),
 }
 
 /// A body spawned by a click.
@@ -130,13 +165,31 @@ pub struct Spawn {
     pub at: Vector2,
 }
 
-/// A frame of the rollback ring: the state before the frame, the spawns made
-/// just before it (already in that state) and the drag during it.
+/// A frame of the rollback ring: the state before the frame, the inputs made
+/// just before it (already in that state), the drag then and the sensor event
+/// counts then.
 struct Record {
     frame: u32,
     snapshot: Vec<u8>,
-    spawns: Vec<Spawn>,
+    inputs: Vec<Input>,
     drag: Option<Drag>,
+    sensor_totals: [u32; 2],
+}
+
+/// Sensor events kept for the page: the last this many.
+pub const SENSOR_LOG: usize = 12;
+
+/// A sensor event as the page lists it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SensorNote {
+    /// The frame it happened in (1 = the first step).
+    pub frame: u32,
+    /// Began (else ended).
+    pub begin: bool,
+    /// The sensor's slot.
+    pub sensor: u32,
+    /// The visitor's slot.
+    pub visitor: u32,
 }
 
 /// The result of a rollback.
@@ -154,13 +207,18 @@ pub struct Rollback {
 pub struct Testbed {
     scenes: Vec<scenes::Scene>,
     scene: usize,
-    substeps: u32,
+    /// The sub-steps the scene was loaded with (a rollback rebuilds it so;
+    /// the restore then sets the count of the snapshot).
+    loaded_substeps: u32,
     running: scenes::Running,
     spawn_box: PathHandle,
     frame: u32,
-    /// Spawns since the last frame (already in the world).
-    spawns: Vec<Spawn>,
+    /// Inputs since the last frame (already in the world).
+    inputs: Vec<Input>,
     drag: Option<Drag>,
+    /// Sensor begin and end events since loading, and the last few.
+    sensor_totals: [u32; 2],
+    sensor_log: VecDeque<SensorNote>,
     ring: VecDeque<Record>,
     ring_frames: usize,
     /// Whether the user changed the world since the scene was loaded (then no
@@ -206,12 +264,14 @@ impl Testbed {
         Ok(Self {
             scenes,
             scene: index,
-            substeps,
+            loaded_substeps: substeps,
             running,
             spawn_box,
             frame: 0,
-            spawns: Vec::new(),
+            inputs: Vec::new(),
             drag: None,
+            sensor_totals: [0; 2],
+            sensor_log: VecDeque::new(),
             ring: VecDeque::new(),
             ring_frames,
             interacted: false,
@@ -235,9 +295,19 @@ impl Testbed {
         self.scene
     }
 
-    /// Sub-steps per step.
+    /// Sub-steps per step now (the world's setting).
     pub fn substeps(&self) -> u32 {
-        self.substeps
+        self.world().def().substeps
+    }
+
+    /// Sensor begin and end events since the scene was loaded.
+    pub fn sensor_totals(&self) -> [u32; 2] {
+        self.sensor_totals
+    }
+
+    /// The last [`SENSOR_LOG`] sensor events, oldest first.
+    pub fn sensor_log(&self) -> impl Iterator<Item = &SensorNote> {
+        self.sensor_log.iter()
     }
 
     /// The world.
@@ -276,35 +346,86 @@ impl Testbed {
     }
 
     /// Steps one frame: records it in the rollback ring, lets the scene add
-    /// what is due, steps with the drag spring if a body is held.
+    /// what is due, steps (a body held is pulled by its target joint).
     ///
     /// # Errors
     /// What stepping fails with (the world is then as the engine left it).
     pub fn step(&mut self) -> Result<(), Fail> {
-        let spawns = std::mem::take(&mut self.spawns);
+        let inputs = std::mem::take(&mut self.inputs);
         let drag = self.drag;
         // The ring: reuse the oldest record's buffer.
-        let mut rec = if self.ring.len() >= self.ring_frames {
-            self.ring.pop_front().map(|mut r| {
-                r.spawns.clear();
-                r
-            })
-        } else {
-            None
-        }
-        .unwrap_or(Record { frame: 0, snapshot: Vec::new(), spawns: Vec::new(), drag: None });
+        let mut rec = if self.ring.len() >= self.ring_frames { self.ring.pop_front() } else { None }
+            .unwrap_or(Record {
+                frame: 0,
+                snapshot: Vec::new(),
+                inputs: Vec::new(),
+                drag: None,
+                sensor_totals: [0; 2],
+            });
         let world = self.running.world();
         rec.snapshot.resize(world.snapshot_len(), 0);
         world.snapshot(&mut rec.snapshot)?;
         rec.frame = self.frame;
-        rec.spawns = spawns;
+        rec.inputs = inputs;
         rec.drag = drag;
+        rec.sensor_totals = self.sensor_totals;
         self.ring.push_back(rec);
-        let note = step_frame(&mut self.running, self.frame, drag)?;
+        let note = step_frame(&mut self.running, self.frame)?;
         if note.is_some() {
             self.scene_note = note;
         }
         self.frame += 1;
+        self.note_sensor_events();
+        Ok(())
+    }
+
+    /// Counts and logs the sensor events of the step just taken.
+    fn note_sensor_events(&mut self) {
+        let w = self.running.world();
+        let frame = self.frame;
+        for (begin, list) in [(true, w.sensor_begin_events()), (false, w.sensor_end_events())] {
+            for e in list {
+                self.sensor_totals[usize::from(!begin)] += 1;
+                if self.sensor_log.len() >= SENSOR_LOG {
+                    self.sensor_log.pop_front();
+                }
+                self.sensor_log.push_back(SensorNote {
+                    frame,
+                    begin,
+                    sensor: e.sensor.index(),
+                    visitor: e.visitor.index(),
+                });
+            }
+        }
+    }
+
+    /// Applies an input to the world now and records it for the next frame.
+    fn input(&mut self, input: Input) -> Result<(), Fail> {
+        apply_input(self.running.world_mut(), self.spawn_box, &mut self.drag, input)?;
+        // Only the last position before a step matters: one move per frame.
+        match (input, self.inputs.last_mut()) {
+            (Input::DragMove(p), Some(Input::DragMove(last))) => *last = p,
+            _ => self.inputs.push(input),
+        }
+        self.interacted = true;
+        Ok(())
+    }
+
+    /// Changes the sub-step count of the running world (from the next frame;
+    /// recorded, so a rollback replays it).
+    ///
+    /// # Errors
+    /// [`E_BAD_INPUT`] outside 1 to `MAX_SUBSTEPS`.
+    pub fn set_substeps(&mut self, n: u32) -> Result<(), Fail> {
+        if n == 0 || n > arphysics::limits::MAX_SUBSTEPS {
+            return Err(Fail::new(
+                E_BAD_INPUT,
+                format!("sub-steps must be 1 to {}", arphysics::limits::MAX_SUBSTEPS),
+            ));
+        }
+        if n != self.substeps() {
+            self.input(Input::Substeps(n))?;
+        }
         Ok(())
     }
 
@@ -320,21 +441,17 @@ impl Testbed {
         if at.x - r < b.min.x || at.x + r > b.max.x || at.y - r < b.min.y || at.y + r > b.max.y {
             return Err(Fail::new(E_OUTSIDE, "spawn outside the world's bounds"));
         }
-        let s = Spawn { ball, at };
-        apply_spawn(self.running.world_mut(), self.spawn_box, s).map_err(|e| match e {
-            Error::CapacityFull { what } => Fail::new(E_FULL, format!("the world is full ({what})")),
-            e => Fail::from(e),
-        })?;
-        self.spawns.push(s);
-        self.interacted = true;
-        Ok(())
+        self.input(Input::Spawn(Spawn { ball, at }))
     }
 
-    /// Takes hold of the dynamic body under `(x, y)`.
+    /// Takes hold of the dynamic body under `(x, y)`: a target joint from that
+    /// point of it to the mouse (see [`DRAG_HERTZ`]). A body already held is
+    /// let go first.
     ///
     /// # Errors
     /// [`E_NOT_DRAGGABLE`] when no dynamic body is there (a static one is
-    /// named as such), [`E_BAD_INPUT`] for a non-finite point.
+    /// named as such), [`E_BAD_INPUT`] for a non-finite point, [`E_FULL`] when
+    /// the joint store is full.
     pub fn drag_begin(&mut self, x: f64, y: f64) -> Result<(), Fail> {
         let p = Vector2::checked_from_f64(x, y).ok_or_else(|| Fail::new(E_BAD_INPUT, "not a point"))?;
         let w = self.world();
@@ -349,26 +466,33 @@ impl Testbed {
             ));
         };
         let anchor = w.body(body)?.transform().apply_inv(p);
-        self.drag = Some(Drag { body, anchor, target: p });
-        self.interacted = true;
-        Ok(())
+        self.drag_end();
+        self.input(Input::DragBegin { body, anchor, target: p })
     }
 
-    /// Moves the held point's target to `(x, y)`.
+    /// Moves the held point's target to `(x, y)` (held to the world's bounds:
+    /// the mouse may leave them).
     ///
     /// # Errors
     /// [`E_BAD_INPUT`] for a non-finite point; nothing held is not an error.
     pub fn drag_move(&mut self, x: f64, y: f64) -> Result<(), Fail> {
         let p = Vector2::checked_from_f64(x, y).ok_or_else(|| Fail::new(E_BAD_INPUT, "not a point"))?;
-        if let Some(d) = &mut self.drag {
-            d.target = p;
+        if self.drag.is_none() {
+            return Ok(());
         }
-        Ok(())
+        let b = self.world().bounds();
+        let p = Vector2::new(p.x.clamp(b.min.x, b.max.x), p.y.clamp(b.min.y, b.max.y));
+        self.input(Input::DragMove(p))
     }
 
-    /// Lets go.
+    /// Lets go: the target joint is removed and the body flies on with the
+    /// speed it had (a throw).
     pub fn drag_end(&mut self) {
-        self.drag = None;
+        if self.drag.is_some() {
+            // Removing a joint that exists cannot fail; a body the scene lost
+            // took its joint with it, which is fine too.
+            let _ = self.input(Input::DragEnd);
+        }
     }
 
     /// Rewinds as many frames as the ring holds (60, fewer for a huge scene or
@@ -391,7 +515,8 @@ impl Testbed {
         // snapshot into that world. Its handles carry the new world's tag: the
         // recorded drags are re-tagged (same slots and generations).
         let scene = self.scenes[self.scene];
-        let (mut fresh, spawn_box) = build(&scene, self.substeps)?;
+        let (mut fresh, spawn_box) = build(&scene, self.loaded_substeps)?;
+        let (drag, sensor_totals) = (first.drag, first.sensor_totals);
         for f in 0..from {
             // Errors here (a full world) are those of the real run; the
             // generator advanced all the same.
@@ -400,20 +525,28 @@ impl Testbed {
         fresh.world_mut().restore(&self.ring[0].snapshot)?;
         self.running = fresh;
         self.spawn_box = spawn_box;
+        // The drag as it was at the first recorded frame, in the new world;
+        // the recorded inputs take it from there.
         let w = self.running.world();
-        let retag = |d: &mut Drag| d.body = w.handle_from_parts(d.body.index(), d.body.generation());
-        self.ring.iter_mut().filter_map(|r| r.drag.as_mut()).for_each(retag);
-        self.drag.as_mut().map(retag);
-        for (k, rec) in self.ring.iter().enumerate() {
-            if k > 0 {
-                for s in &rec.spawns {
-                    apply_spawn(self.running.world_mut(), self.spawn_box, *s)?;
-                }
+        self.drag = drag.map(|d| Drag {
+            body: w.handle_from_parts(d.body.index(), d.body.generation()),
+            joint: w.handle_from_parts(d.joint.index(), d.joint.generation()),
+            ..d
+        });
+        self.sensor_totals = sensor_totals;
+        self.sensor_log.retain(|n| n.frame <= from);
+        for k in 0..self.ring.len() {
+            let Some(rec) = self.ring.get(k) else { break };
+            let (frame, inputs) = (rec.frame, if k > 0 { rec.inputs.clone() } else { Vec::new() });
+            for i in inputs {
+                apply_input(self.running.world_mut(), self.spawn_box, &mut self.drag, i)?;
             }
-            step_frame(&mut self.running, rec.frame, rec.drag)?;
+            step_frame(&mut self.running, frame)?;
+            self.frame = frame + 1;
+            self.note_sensor_events();
         }
-        for s in &self.spawns {
-            apply_spawn(self.running.world_mut(), self.spawn_box, *s)?;
+        for i in self.inputs.clone() {
+            apply_input(self.running.world_mut(), self.spawn_box, &mut self.drag, i)?;
         }
         let after = self.world().state_hash();
         let r = Rollback { frames, before, after };
@@ -506,8 +639,13 @@ impl Testbed {
             }
             out.extend_from_slice(&rec);
         }
-        // Joints, kind 5: a line between the anchors (world points).
-        for (_, j) in w.joints() {
+        // Joints, kind 5: a line between the anchors (world points); the drag's
+        // own is drawn last, as kind 4.
+        let drag_joint = self.drag.map(|d| d.joint);
+        for (h, j) in w.joints() {
+            if Some(h) == drag_joint {
+                continue;
+            }
             let def = j.def();
             let Ok(a) = w.body(def.body_a) else { continue };
             let pa = a.transform().apply(def.anchor_a);
@@ -525,7 +663,7 @@ impl Testbed {
             rec[8..12].copy_from_slice(&[ax, ay, bx, by]);
             out.extend_from_slice(&rec);
         }
-        // The drag spring, as a last record of kind 4: from the held point to the mouse.
+        // The drag, as a last record of kind 4: from the held point to the mouse.
         if let Some(d) = self.drag {
             if let Ok(b) = w.body(d.body) {
                 let mut rec = [0f32; DRAW_STRIDE];
@@ -548,56 +686,162 @@ fn apply_spawn(w: &mut World<'static>, spawn_box: PathHandle, s: Spawn) -> Resul
     w.add_body(def.position(s.at))
 }
 
-/// The drag: a zero-length spring from the held point to the mouse of
-/// stiffness ω²·m (ω = 2π·3 Hz, so ω² ≈ 355 /s²), and while held the body's
-/// linear damping raised to 2·ζ·ω = 26.4 /s (ζ = 0.7) and its angular damping
-/// to 4 /s. A damped spring damps only along its axis, so a zero-length one
-/// alone lets the body orbit the mouse; damping the body (relative to the
-/// world, as a mouse joint does) settles it. The stretch the spring pulls with
-/// is at most 1.5 m, which bounds the force at about 530 N per kilogram.
-const DRAG_K_PER_KG: i32 = 355;
-const DRAG_LINEAR_DAMPING: Scalar = Scalar::lit("26.4");
-const DRAG_ANGULAR_DAMPING: Scalar = Scalar::lit("4");
-const DRAG_MAX_STRETCH: Scalar = Scalar::lit("1.5");
-
-/// One frame: the scene's additions, the drag (added for this step only: the
-/// engine has no mouse joint yet), the step. Returns the scene's note if its
-/// spawner failed (the step still happens).
-fn step_frame(running: &mut scenes::Running, frame: u32, drag: Option<Drag>) -> Result<Option<String>, Fail> {
-    let note = running.before_step(frame).err().map(|e| format!("scene spawner: {e}"));
-    let w = running.world_mut();
-    let mut joint = None;
-    let mut restore = None;
-    if let Some(d) = drag {
-        if let Ok(b) = w.body(d.body) {
-            let held = b.transform().apply(d.anchor);
-            let pull = d.target - held;
-            let len = pull.length();
-            let target =
-                if len > DRAG_MAX_STRETCH { held + pull * (DRAG_MAX_STRETCH / len) } else { d.target };
-            let k = (b.mass() * DRAG_K_PER_KG).min(arphysics::limits::MAX_STIFFNESS);
-            let damping = (b.linear_damping(), b.angular_damping());
-            let kind =
-                JointKind::DampedSpring { stiffness: k, damping: Scalar::ZERO, rest_length: Scalar::ZERO };
-            // A failure (a full joint store) only means no pull this frame.
-            joint = w.add_joint(JointDef::to_world(d.body, d.anchor, target, kind)).ok();
-            if joint.is_some()
-                && w.set_linear_damping(d.body, damping.0.max(DRAG_LINEAR_DAMPING)).is_ok()
-                && w.set_angular_damping(d.body, damping.1.max(DRAG_ANGULAR_DAMPING)).is_ok()
-            {
-                restore = Some(damping);
+/// Applies an input to the world, updating the drag in progress. Handles in
+/// the input are taken by slot and generation, so an input recorded in one
+/// world replays in the rebuilt world of a rollback.
+fn apply_input(
+    w: &mut World<'static>,
+    spawn_box: PathHandle,
+    drag: &mut Option<Drag>,
+    input: Input,
+) -> Result<(), Fail> {
+    match input {
+        Input::Spawn(s) => {
+            apply_spawn(w, spawn_box, s).map_err(|e| match e {
+                Error::CapacityFull { what } => Fail::new(E_FULL, format!("the world is full ({what})")),
+                e => Fail::from(e),
+            })?;
+        }
+        Input::DragBegin { body, anchor, target } => {
+            let body = w.handle_from_parts(body.index(), body.generation());
+            let max_force = (w.body(body)?.mass() * DRAG_FORCE_PER_KG).min(arphysics::limits::MAX_FORCE);
+            let kind = JointKind::Target { hertz: DRAG_HERTZ, damping_ratio: DRAG_DAMPING_RATIO, max_force };
+            let joint = w.add_joint(JointDef::to_world(body, anchor, target, kind)).map_err(|e| match e {
+                Error::CapacityFull { .. } => Fail::new(E_FULL, "no room for the drag joint"),
+                e => Fail::from(e),
+            })?;
+            *drag = Some(Drag { body, anchor, target, joint });
+        }
+        Input::DragMove(p) => {
+            if let Some(d) = drag {
+                w.set_joint_target(d.joint, p)?;
+                d.target = p;
             }
         }
+        Input::DragEnd => {
+            if let Some(d) = drag.take() {
+                // Gone already only if its body was removed: nothing to do then.
+                let _ = w.remove_joint(d.joint);
+            }
+        }
+        Input::Substeps(n) => w.set_substeps(n)?,
     }
-    let stepped = w.step(dt());
-    if let Some(j) = joint {
-        let _ = w.remove_joint(j);
-    }
-    if let (Some(d), Some((linear, angular))) = (drag, restore) {
-        // The values were valid before: these cannot fail.
-        let _ = w.set_linear_damping(d.body, linear);
-        let _ = w.set_angular_damping(d.body, angular);
-    }
-    stepped?;
+    Ok(())
+}
+
+/// One frame: the scene's additions, then the step. Returns the scene's note
+/// if its spawner failed (the step still happens).
+fn step_frame(running: &mut scenes::Running, frame: u32) -> Result<Option<String>, Fail> {
+    let note = running.before_step(frame).err().map(|e| format!("scene spawner: {e}"));
+    running.world_mut().step(dt())?;
     Ok(note)
+}
+
+/// One action of a scripted input sequence: what the page's mouse and
+/// controls do, as data, so the native build and the page can play the same
+/// sequence and compare hashes (coordinates in metres).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Action {
+    /// Step this many frames.
+    Step(u32),
+    /// Press on (x, y): take hold of the body there.
+    DragBegin(f64, f64),
+    /// Move the mouse to (x, y).
+    DragMove(f64, f64),
+    /// Release.
+    DragEnd,
+    /// Spawn a ball (true) or a box at (x, y).
+    Spawn(bool, f64, f64),
+    /// Change the sub-step count.
+    Substeps(u32),
+}
+
+/// A scripted input sequence on a scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Script {
+    /// The scene's name.
+    pub scene: &'static str,
+    /// The actions, in order.
+    pub actions: Vec<Action>,
+}
+
+/// The scripted drag the browser check plays and compares with the native
+/// build: on pyramid_20, take the top box, lift it slowly for 40 frames, go
+/// to 8 sub-steps, sweep it right fast and let go (a throw), spawn a ball,
+/// back to 4 sub-steps. Coordinates are simple sums of f64, printed in the
+/// page's info as the shortest decimal that reads back to the same f64.
+pub fn drag_script() -> Script {
+    let mut a = vec![Action::Step(30), Action::DragBegin(0.0, 19.5)];
+    for k in 1..=40 {
+        let k = f64::from(k);
+        a.push(Action::DragMove(-0.1 * k, 19.5 + 0.12 * k));
+        a.push(Action::Step(1));
+    }
+    a.push(Action::Substeps(8));
+    for k in 1..=15 {
+        a.push(Action::DragMove(-4.0 + 0.6 * f64::from(k), 24.3));
+        a.push(Action::Step(1));
+    }
+    a.extend_from_slice(&[
+        Action::DragEnd,
+        Action::Spawn(true, 5.0, 12.0),
+        Action::Step(60),
+        Action::Substeps(4),
+        Action::Step(30),
+    ]);
+    Script { scene: "pyramid_20", actions: a }
+}
+
+impl Script {
+    /// The script as JSON: `{"scene":…,"actions":[["step",30],["begin",x,y],
+    /// ["move",x,y],["end"],["spawn",0|1,x,y],["substeps",n],…]}`.
+    pub fn to_json(&self) -> String {
+        let actions: Vec<String> = self
+            .actions
+            .iter()
+            .map(|a| match *a {
+                Action::Step(n) => format!("[\"step\",{n}]"),
+                Action::DragBegin(x, y) => format!("[\"begin\",{x},{y}]"),
+                Action::DragMove(x, y) => format!("[\"move\",{x},{y}]"),
+                Action::DragEnd => "[\"end\"]".to_string(),
+                Action::Spawn(ball, x, y) => format!("[\"spawn\",{},{x},{y}]", u8::from(ball)),
+                Action::Substeps(n) => format!("[\"substeps\",{n}]"),
+            })
+            .collect();
+        format!("{{\"scene\":\"{}\",\"actions\":[{}]}}", self.scene, actions.join(","))
+    }
+}
+
+impl Testbed {
+    /// Plays one scripted action as the page's controls would.
+    ///
+    /// # Errors
+    /// What the control fails with.
+    pub fn play(&mut self, action: Action) -> Result<(), Fail> {
+        match action {
+            Action::Step(n) => (0..n).try_for_each(|_| self.step()),
+            Action::DragBegin(x, y) => self.drag_begin(x, y),
+            Action::DragMove(x, y) => self.drag_move(x, y),
+            Action::DragEnd => {
+                self.drag_end();
+                Ok(())
+            }
+            Action::Spawn(ball, x, y) => self.spawn(ball, x, y),
+            Action::Substeps(n) => self.set_substeps(n),
+        }
+    }
+
+    /// Loads the script's scene at 4 sub-steps and plays it.
+    ///
+    /// # Errors
+    /// [`E_NO_SCENE`] or what an action fails with.
+    pub fn run_script(script: &Script) -> Result<Self, Fail> {
+        let index = Self::scene_index(script.scene)
+            .ok_or_else(|| Fail::new(E_NO_SCENE, format!("no scene named {}", script.scene)))?;
+        let mut t = Self::new(index, 4)?;
+        for a in &script.actions {
+            t.play(*a)?;
+        }
+        Ok(t)
+    }
 }

@@ -1,12 +1,16 @@
 //! The testbed's scenes: the demo's (included from examples/demo/scenes.rs by
 //! build.rs), the benchmark scenes (pyramid_20, large_pyramid, rain,
-//! joint_grid: the definitions of benches/scenes.rs) and a shapes scene.
+//! joint_grid: the definitions of benches/scenes.rs) and one scene per
+//! feature: shapes, joints, sensors.
 //!
 //! Every scene's world is made by [`crate::scene_world`], which applies the
 //! testbed's sub-step count and leaves room for spawned bodies and the drag
 //! joint. Capacities are not part of the state, so this room changes no hash.
 
-use arphysics::{BodyDef, Capsule, Error, GravityForceGenerator, PolygonPath, Rect, Segment, Vector2, World};
+use arphysics::{
+    BodyDef, Capsule, Error, GravityForceGenerator, JointDef, JointKind, MaxTorque, Motor, PolygonPath, Rect,
+    Segment, Vector2, World,
+};
 
 /// The demo's scenes, as examples/demo/scenes.rs has them.
 #[allow(dead_code, unused_imports, clippy::all)]
@@ -108,6 +112,20 @@ pub fn all() -> Vec<Scene> {
             view: (-16.0, -2.0, 16.0, 20.0),
             check_frames: 240,
             build: Build::Plain(shapes),
+        },
+        Scene {
+            name: "joints",
+            about: "every joint kind: a pivot chain with limits, a motor, a weld, a rod, a rope, a damped spring",
+            view: (-16.0, -2.0, 16.0, 20.0),
+            check_frames: 240,
+            build: Build::Plain(joints),
+        },
+        Scene {
+            name: "sensors",
+            about: "two sensor zones (blue): balls fall through one and settle in the other; the page lists the begin and end events",
+            view: (-12.0, -2.0, 12.0, 20.0),
+            check_frames: 240,
+            build: Build::Plain(sensors),
         },
         Scene {
             name: "pyramid_20",
@@ -228,6 +246,107 @@ fn shapes() -> Result<World<'static>, Error> {
             };
             w.add_body(def.position(p).angle(cm(30 * col - 90)))?;
         }
+    }
+    Ok(w)
+}
+
+// ---- The joints scene. ----
+
+/// A world for a feature scene: bounds (−60, −20)–(60, 80) m, gravity (0, −10),
+/// a floor with its top at y = 0 from −15 to 15 m.
+fn feature_world(bodies: usize, joints: usize) -> Result<World<'static>, Error> {
+    use demo::{at, cm};
+    let bounds = Rect::from_corners(Vector2::from_int(-60, -20), Vector2::from_int(60, 80));
+    let mut w = crate::scene_world(bounds, bench::capacities(bodies, joints))?;
+    w.add_force_generator(GravityForceGenerator::new(Vector2::from_int(0, -10)))?;
+    let floor = w.add_path(PolygonPath::rectangle(cm(3000), cm(100))?)?;
+    w.add_body(BodyDef::polygon(floor).position(at(0, -50)).static_body())?;
+    Ok(w)
+}
+
+/// Every joint kind, left to right: a chain of five planks on pivots with
+/// ±30° limits hanging from a world point; a wheel driven by a pivot's motor
+/// (2 rad/s, at most 400 N·m) with a box resting on it; two boxes welded into
+/// an L hanging from a rod; a ball swinging on a slack rope; a box bobbing on
+/// a damped spring. Built from whole centimetres (no float).
+fn joints() -> Result<World<'static>, Error> {
+    use demo::{at, cm};
+    let mut w = feature_world(32, 16)?;
+    let plank = w.add_path(PolygonPath::rectangle(cm(100), cm(24))?)?;
+    let block = w.add_path(PolygonPath::rectangle(cm(80), cm(80))?)?;
+    let pivot = |limits| JointKind::Pivot { limits, motor: None };
+    let limits = Some((-demo::cm(52), demo::cm(52)));
+    // The chain: planks 1 m long, joined end to end, from (−9, 16) sideways.
+    let mut prev = None;
+    for k in 0..5 {
+        let b = w.add_body(BodyDef::polygon(plank).position(at(-850 + 100 * k, 1600)))?;
+        let (near, far) = (at(-50, 0), at(50, 0));
+        let j = match prev {
+            None => JointDef::to_world(b, near, at(-900, 1600), pivot(None)),
+            Some(p) => JointDef::new(p, far, b, near, pivot(limits)),
+        };
+        w.add_joint(j)?;
+        prev = Some(b);
+    }
+    // The motor: a wheel on a pivot to a world point, turning clockwise, a
+    // box dropped on it.
+    let wheel = w.add_body(BodyDef::circle(cm(120)).position(at(-300, 400)).friction(cm(90)))?;
+    let motor = Motor { speed: -cm(200), max_torque: MaxTorque::Limited(cm(40_000)) };
+    w.add_joint(JointDef::to_world(
+        wheel,
+        Vector2::ZERO,
+        at(-300, 400),
+        JointKind::Pivot { limits: None, motor: Some(motor) },
+    ))?;
+    w.add_body(BodyDef::polygon(block).position(at(-300, 700)))?;
+    // The weld: an L of two boxes, hung by a rod of 3 m from (3, 15).
+    let a = w.add_body(BodyDef::polygon(block).position(at(300, 1200)))?;
+    let b = w.add_body(BodyDef::polygon(block).position(at(380, 1200)))?;
+    w.add_joint(JointDef::new(a, at(40, 0), b, at(-40, 0), JointKind::Weld))?;
+    let c = w.add_body(BodyDef::polygon(block).position(at(300, 1120)))?;
+    w.add_joint(JointDef::new(a, at(0, -40), c, at(0, 40), JointKind::Weld))?;
+    w.add_joint(JointDef::to_world(a, at(0, 40), at(300, 1500), JointKind::Rod { length: cm(260) }))?;
+    // The rope: 4 m from (8, 15), the ball let go 3 m to the side and 1 m
+    // below (slack, then taut).
+    let ball = w.add_body(BodyDef::circle(cm(40)).position(at(1100, 1400)))?;
+    w.add_joint(JointDef::to_world(
+        ball,
+        Vector2::ZERO,
+        at(800, 1500),
+        JointKind::Rope { max_length: cm(400) },
+    ))?;
+    // The damped spring: 20 N/m per kg (ω ≈ 4.5 rad/s), damping ratio ≈ 0.1,
+    // rest length 2 m, from (12, 14); the box starts 2 m below its rest point.
+    let bob = w.add_body(BodyDef::polygon(block).position(at(1200, 800)))?;
+    let m = w.body(bob)?.mass();
+    let spring = JointKind::DampedSpring { stiffness: m * 20, damping: m * cm(90), rest_length: cm(200) };
+    w.add_joint(JointDef::to_world(bob, Vector2::ZERO, at(1200, 1400), spring))?;
+    Ok(w)
+}
+
+// ---- The sensors scene. ----
+
+/// Two sensor zones: a 6 × 2 m one in mid-air that a column of balls falls
+/// through (a begin and an end event each) and a 4 × 1.5 m one on the floor
+/// where some of them settle (a begin, no end); slippery boxes slide down a
+/// ramp towards it.
+fn sensors() -> Result<World<'static>, Error> {
+    use demo::{at, cm};
+    let mut w = feature_world(64, 0)?;
+    let zone = w.add_path(PolygonPath::rectangle(cm(600), cm(200))?)?;
+    w.add_body(BodyDef::polygon(zone).position(at(0, 800)).static_body().sensor())?;
+    let pit = w.add_path(PolygonPath::rectangle(cm(400), cm(150))?)?;
+    w.add_body(BodyDef::polygon(pit).position(at(0, 75)).static_body().sensor())?;
+    let ramp = w.add_path(PolygonPath::rectangle(cm(800), cm(30))?)?;
+    w.add_body(BodyDef::polygon(ramp).position(at(-700, 500)).angle(-cm(40)).static_body())?;
+    for k in 0..12 {
+        let x = -200 + 35 * (k % 12);
+        w.add_body(BodyDef::circle(cm(30)).position(at(x, 1300 + 90 * k)))?;
+    }
+    let block = w.add_path(PolygonPath::rectangle(cm(60), cm(60))?)?;
+    for k in 0..4 {
+        let def = BodyDef::polygon(block).position(at(-1000 + 90 * k, 760 - 40 * k)).angle(-cm(40));
+        w.add_body(def.friction(cm(5)))?;
     }
     Ok(w)
 }

@@ -1,5 +1,5 @@
-//! The testbed's behaviour natively: the drag spring pulls a body to the mouse
-//! (softly, with a bounded stretch), rollback re-simulates to the same hash
+//! The testbed's behaviour natively: the drag (the engine's target joint)
+//! pulls a body to the mouse and throws it, the feature scenes work, rollback re-simulates to the same hash
 //! through spawns and drags, and bad input gives error codes, not panics.
 
 use arphysics_testbed::{Testbed, E_BAD_INPUT, E_FULL, E_NOT_DRAGGABLE, E_NO_HISTORY, E_NO_SCENE, E_OUTSIDE};
@@ -14,36 +14,45 @@ fn position(t: &Testbed, body: arphysics::BodyHandle) -> (f64, f64) {
 }
 
 #[test]
-fn the_drag_spring_brings_the_held_point_to_the_mouse_and_holds_it_there() {
+fn the_drag_joint_brings_the_held_point_to_the_mouse_holds_it_and_throws() {
     let mut t = scene("pyramid_20");
     // The top box of the pyramid: centre (0, 19.5); hold it at its centre.
     t.drag_begin(0.0, 19.5).expect("the top box is dynamic");
     let body = t.drag().expect("held").body;
-    // Lift it 4 m up and 3 m left: farther than the stretch limit, so the pull
-    // is bounded and the box travels over several frames.
+    assert_eq!(t.world().joints().count(), 1, "the drag is an engine target joint");
+    let j = t.drag().expect("held").joint;
+    assert!(matches!(t.world().joint(j).expect("joint").def().kind, arphysics::JointKind::Target { .. }));
+    // Lift it 4 m up and 3 m left.
     t.drag_move(-3.0, 23.5).expect("a point");
+    for _ in 0..120 {
+        t.step().expect("steps");
+    }
+    let (x, y) = position(&t, body);
+    // A 5 Hz spring, damping ratio 0.7: settled after 2 s; gravity sags it by
+    // g/ω² = 10/(10π)² ≈ 0.010 m.
+    let sag = 10.0 / (10.0 * std::f64::consts::PI).powi(2);
+    println!(
+        "held at ({x:.4}, {y:.4}) for the mouse at (−3, 23.5): sag {:.4} m vs g/ω² = {sag:.4} m",
+        23.5 - y
+    );
+    assert!((x + 3.0).abs() < 0.002, "x {x}");
+    assert!((23.5 - y - sag).abs() < 0.002, "y {y}: hangs g/ω² below the mouse");
+    // Throw: sweep the mouse right at 10 m/s for 20 frames, let go.
+    for k in 1..=20 {
+        t.drag_move(-3.0 + f64::from(k) / 6.0, 23.5).expect("a point");
+        t.step().expect("steps");
+    }
+    t.drag_end();
+    assert_eq!(t.world().joints().count(), 0, "released: the joint is removed");
+    let vx = t.world().body(body).expect("alive").linear_velocity().x.to_num::<f64>();
+    let x0 = position(&t, body).0;
     for _ in 0..10 {
         t.step().expect("steps");
     }
-    let (x, y) = position(&t, body);
-    let early = ((x + 3.0).powi(2) + (y - 23.5).powi(2)).sqrt();
-    assert!(early > 0.5, "a soft spring takes more than 10 frames to cover 5 m (left {early} m)");
-    for _ in 0..110 {
-        t.step().expect("steps");
-    }
-    let (x, y) = position(&t, body);
-    // A 3 Hz spring, damping ratio 0.7: settled after 2 s; gravity sags it by
-    // g/ω² = 10/355 ≈ 0.03 m.
-    assert!((x + 3.0).abs() < 0.05, "x {x}");
-    assert!((y - 23.5).abs() < 0.06 && y < 23.5, "y {y}: hangs a little below the mouse");
-    // Let go: it falls.
-    t.drag_end();
-    for _ in 0..30 {
-        t.step().expect("steps");
-    }
-    assert!(position(&t, body).1 < y - 1.0, "released, it falls");
-    // The spring is added for each step and removed after it.
-    assert_eq!(t.world().joints().count(), 0);
+    let flown = position(&t, body).0 - x0;
+    println!("thrown at {vx:.2} m/s (the mouse moved at 10), flew {flown:.3} m in 1/6 s");
+    assert!(vx > 8.0 && vx < 12.0, "{vx}");
+    assert!((flown - vx / 6.0).abs() < 0.05, "{flown}");
 }
 
 /// The input of frame `f` in the rollback test: two spawns, then a drag of
@@ -115,4 +124,105 @@ fn bad_input_is_an_error_code_and_changes_nothing() {
     assert_eq!(full.code, E_FULL);
     assert!(spawned >= arphysics_testbed::SPAWN_ROOM as i32);
     t.step().expect("a full world steps");
+}
+
+#[test]
+fn the_joints_scene_keeps_every_joint_and_its_motor_turns_the_wheel() {
+    use arphysics::JointKind;
+    let mut t = scene("joints");
+    for _ in 0..240 {
+        t.step().expect("steps");
+    }
+    let w = t.world();
+    let (mut kinds, mut worst_gap) = (Vec::new(), 0.0f64);
+    for (_, j) in w.joints() {
+        let d = j.def();
+        let a = w.body(d.body_a).expect("a");
+        let pa = a.transform().apply(d.anchor_a).to_f64();
+        let pb = match d.body_b {
+            Some(h) => w.body(h).expect("b").transform().apply(d.anchor_b).to_f64(),
+            None => d.anchor_b.to_f64(),
+        };
+        let dist = ((pa.0 - pb.0).powi(2) + (pa.1 - pb.1).powi(2)).sqrt();
+        match d.kind {
+            JointKind::Pivot { motor, .. } => {
+                worst_gap = worst_gap.max(dist);
+                if motor.is_some() {
+                    let spin = a.angular_velocity().to_num::<f64>();
+                    println!("motor: wheel spins at {spin:.3} rad/s (target −2)");
+                    assert!((spin + 2.0).abs() < 0.05, "{spin}");
+                }
+            }
+            JointKind::Weld => worst_gap = worst_gap.max(dist),
+            JointKind::Rod { length } => {
+                println!("rod: {dist:.4} m (2.6)");
+                assert!((dist - length.to_num::<f64>()).abs() < 0.02, "{dist}");
+            }
+            JointKind::Rope { max_length } => {
+                println!("rope: {dist:.4} m (≤ 4)");
+                assert!(dist <= max_length.to_num::<f64>() + 0.02, "{dist}");
+            }
+            _ => {}
+        }
+        kinds.push(std::mem::discriminant(&d.kind));
+    }
+    println!("pivots and welds: anchors at most {worst_gap:.4} m apart (≤ 0.02)");
+    assert!(worst_gap < 0.02);
+    kinds.dedup();
+    assert!(kinds.len() >= 5, "pivot, weld, rod, rope, damped spring: {kinds:?}");
+    assert!(w.bodies().all(|(_, b)| !b.is_out_of_bounds()));
+}
+
+#[test]
+fn the_sensors_scene_reports_begin_and_end_events_and_rollback_keeps_their_count() {
+    let mut t = scene("sensors");
+    for _ in 0..240 {
+        t.step().expect("steps");
+    }
+    let [begins, ends] = t.sensor_totals();
+    println!(
+        "sensors: {begins} begin and {ends} end events in 240 frames; last: {:?}",
+        t.sensor_log().last()
+    );
+    // Twelve balls fall through the zone in mid-air (a begin and an end each)
+    // and most come to rest in the pit (a begin each).
+    assert!(begins >= 12 + 6, "{begins}");
+    assert!(ends >= 12, "{ends}");
+    assert!(begins > ends);
+    let r = t.rollback().expect("same hash");
+    assert_eq!(r.before, r.after);
+    assert_eq!(t.sensor_totals(), [begins, ends], "a rollback re-counts the frames it re-simulates once");
+}
+
+#[test]
+fn the_scripted_drag_replays_to_the_same_hash_and_rolls_back() {
+    let script = arphysics_testbed::drag_script();
+    let mut a = Testbed::run_script(&script).expect("plays");
+    let b = Testbed::run_script(&script).expect("plays");
+    assert_eq!(a.world().state_hash(), b.world().state_hash());
+    assert_eq!(a.substeps(), 4);
+    // The drag changed the world: a run without it differs.
+    let mut plain = scene(script.scene);
+    for _ in 0..a.frame() {
+        plain.step().expect("steps");
+    }
+    assert_ne!(plain.world().state_hash(), a.world().state_hash());
+    // The JSON the page reads has every action.
+    let json = script.to_json();
+    assert_eq!(json.matches('[').count(), script.actions.len() + 1);
+    // Rollback across the sub-step changes and the throw.
+    let r = a.rollback().expect("same hash");
+    assert_eq!(r.before, r.after);
+    // 60 frames back is before the second change: roll back a run stopped
+    // right after the throw, across the change to 8 sub-steps too.
+    let mut t = scene(script.scene);
+    for act in script.actions.iter().take_while(|x| !matches!(x, arphysics_testbed::Action::Spawn(..))) {
+        t.play(*act).expect("plays");
+    }
+    t.step().expect("steps");
+    assert_eq!(t.substeps(), 8);
+    let r = t.rollback().expect("same hash across a sub-step change");
+    assert_eq!(r.before, r.after);
+    assert_eq!(r.after, t.world().state_hash());
+    assert_eq!(t.substeps(), 8);
 }

@@ -185,11 +185,7 @@ fn many_pyramids() -> Scene {
 /// 40 × 25 with 1.25 m spacing, from 3 m to 33 m above the floor of a U container
 /// 60 m wide with 30 m walls; they all fall at once.
 fn rain() -> Scene {
-    let mut bodies = vec![
-        ground_box(31.0, 0.5, 0.0, -0.5),   // floor
-        ground_box(0.5, 15.0, -30.5, 15.0), // left wall
-        ground_box(0.5, 15.0, 30.5, 15.0),  // right wall
-    ];
+    let mut bodies = bin(30.0, 30.0);
     let hexagon: Vec<(f64, f64)> = (0..6)
         .map(|k| {
             let t = std::f64::consts::PI / 3.0 * f64::from(k);
@@ -210,9 +206,26 @@ fn rain() -> Scene {
             n += 1;
         }
     }
+    falling("rain", bodies)
+}
+
+/// A static U container on y = 0: a floor 2·`half_width` m wide inside (1 m
+/// thick) and walls of `height` m (1 m thick) at its ends.
+fn bin(half_width: f64, height: f64) -> Vec<BodyDesc> {
+    let wall_x = half_width + 0.5;
+    vec![
+        ground_box(half_width + 1.0, 0.5, 0.0, -0.5),         // floor
+        ground_box(0.5, height / 2.0, -wall_x, height / 2.0), // left wall
+        ground_box(0.5, height / 2.0, wall_x, height / 2.0),  // right wall
+    ]
+}
+
+/// A scene of bodies falling into a bin: 1,000 steps, 6 pairs per body, the last
+/// body tracked.
+fn falling(name: &'static str, bodies: Vec<BodyDesc>) -> Scene {
     let top_body = bodies.len() - 1;
     Scene {
-        name: "rain",
+        name,
         bodies,
         joints: Vec::new(),
         steps: 1000,
@@ -232,11 +245,7 @@ fn rain() -> Scene {
 /// Its ms/step × 8 is the stepping part of issue 16's rollback target (< 2 ms for a
 /// restore and 8 steps), here beside the peers' figure for the same 8 steps.
 fn rollback_500() -> Scene {
-    let mut bodies = vec![
-        ground_box(21.0, 0.5, 0.0, -0.5),   // floor
-        ground_box(0.5, 10.0, -20.5, 10.0), // left wall
-        ground_box(0.5, 10.0, 20.5, 10.0),  // right wall
-    ];
+    let mut bodies = bin(20.0, 20.0);
     let regular = |n: u32, r: f64| -> Vec<(f64, f64)> {
         (0..n)
             .map(|k| {
@@ -257,16 +266,7 @@ fn rollback_500() -> Scene {
         };
         bodies.push(dynamic(shape, x, y));
     }
-    let top_body = bodies.len() - 1;
-    Scene {
-        name: "rollback_500",
-        bodies,
-        joints: Vec::new(),
-        steps: 1000,
-        bounds: (-100.0, -50.0, 100.0, 150.0),
-        contacts_per_body: 6,
-        top_body,
-    }
+    falling("rollback_500", bodies)
 }
 
 fn joint_grid() -> Scene {

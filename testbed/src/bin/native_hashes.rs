@@ -4,6 +4,10 @@
 //! web/native-hashes.json; the page shows the native hash next to its own and
 //! the browser check compares them.
 //!
+//! Also the hash at the end of the scripted drag (`drag_script`: a drag, a
+//! throw, sub-step changes, a spawn), which the page plays through its
+//! controls.
+//!
 //! Run: `cargo run --release --bin native_hashes [-- --out FILE]`.
 //! Hashes are taken every 60 frames up to `live_frames` (600 for the small
 //! scenes, the check's frame count for the huge ones) and at `check_frames`.
@@ -67,7 +71,20 @@ fn main() -> ExitCode {
             hashes.join(",")
         ));
     }
-    json.push_str("\n}}\n");
+    // The scripted drag the browser check plays through the page's controls.
+    let script = arphysics_testbed::drag_script();
+    match Testbed::run_script(&script) {
+        Ok(t) => json.push_str(&format!(
+            "\n}},\"script\":{{\"scene\":\"{}\",\"frames\":{},\"hash\":\"{:016x}\"}}}}\n",
+            script.scene,
+            t.frame(),
+            t.world().state_hash()
+        )),
+        Err(e) => {
+            eprintln!("the scripted drag: {}", e.message);
+            return ExitCode::FAILURE;
+        }
+    }
     match out {
         Some(path) => {
             if let Err(e) = std::fs::write(&path, &json) {
