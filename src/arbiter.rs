@@ -481,10 +481,16 @@ impl<'a> ArbiterStore<'a> {
 
     /// Keeps the live arbiters for which `keep` returns true, in order.
     pub(crate) fn retain(&mut self, mut keep: impl FnMut(&Arbiter) -> bool) {
+        self.retain_mut(|arb| keep(arb));
+    }
+
+    /// As [`ArbiterStore::retain`], `keep` also changing the arbiters it keeps
+    /// (without changing their order).
+    pub(crate) fn retain_mut(&mut self, mut keep: impl FnMut(&mut Arbiter) -> bool) {
         let mut out = 0usize;
         for k in 0..self.count {
-            let Some(arb) = self.live.get(k).copied() else { break };
-            if !keep(&arb) {
+            let Some(mut arb) = self.live.get(k).copied() else { break };
+            if !keep(&mut arb) {
                 continue;
             }
             if let Some(slot) = self.live.get_mut(out) {

@@ -646,6 +646,46 @@ pub(crate) fn end_arbiters_of(
     });
 }
 
+/// Ends and drops the arbiters of shape `shape` of body slot `index` (the
+/// shape was removed), calling `end` for those that had begun, and moves the
+/// body's later shapes' arbiters down one index. The arbiters stay in key
+/// order: the indices map in order.
+pub(crate) fn end_arbiters_of_shape(
+    index: u32,
+    shape: u32,
+    bodies: &Arena<'_, Body>,
+    arbiters: &mut ArbiterStore<'_>,
+    handlers: &mut HandlerTable<'_>,
+    post_step: &mut PostStepQueue<'_>,
+) {
+    arbiters.retain_mut(|arb| {
+        let on_a = arb.body_a.index() == index;
+        let on_b = arb.body_b.index() == index;
+        if !on_a && !on_b {
+            return true;
+        }
+        let (sa, sb) = (arb.shape_a(), arb.shape_b());
+        if (on_a && sa == shape) || (on_b && sb == shape) {
+            let sensor = match (bodies.get(arb.body_a), bodies.get(arb.body_b)) {
+                (Some(a), Some(b)) => sensor_pair(a, b),
+                _ => false,
+            };
+            if !sensor && matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring) {
+                let mut ended = *arb;
+                ended.state = ArbiterState::Separated;
+                if let Some(h) = handlers.get(ended.level_a, ended.level_b) {
+                    let mut ctx = CallbackContext { bodies, post_step: post_step.view() };
+                    h.end(&ended, &mut ctx);
+                }
+            }
+            return false;
+        }
+        let down = |on: bool, s: u32| if on && s > shape { s - 1 } else { s };
+        arb.set_shapes(down(on_a, sa), down(on_b, sb));
+        true
+    });
+}
+
 /// Runs one pair's lifecycle for this step. Returns whether to keep the arbiter.
 fn lifecycle(
     arb: &mut Arbiter,

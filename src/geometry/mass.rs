@@ -244,7 +244,7 @@ fn check_shape(area: Scalar, unit_inertia: Scalar) -> Result<(), Error> {
 
 /// `a · b / c` for positive `a`, `b`, `c`, exact in `i128` (the raw product is
 /// below 2^126) and rounded once to nearest; `None` when the result does not fit.
-fn mul_div_round(a: Scalar, b: Scalar, c: Scalar) -> Option<Scalar> {
+pub(crate) fn mul_div_round(a: Scalar, b: Scalar, c: Scalar) -> Option<Scalar> {
     let num = i128::from(a.to_bits()).checked_mul(i128::from(b.to_bits()))?;
     let den = i128::from(c.to_bits());
     if num < 0 || den <= 0 {
