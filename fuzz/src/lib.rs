@@ -281,6 +281,7 @@ impl WorldSpec {
             post_step_callbacks: arphysics::handler::DEFAULT_POST_STEP_CALLBACKS,
             events: 16,
             chain_vertices: 4 * usize::from(self.paths % 17),
+            shapes: 0,
         }
     }
 }

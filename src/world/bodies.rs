@@ -208,8 +208,8 @@ impl World<'_> {
         if !self.bodies.contains(h) {
             return Err(Error::StaleHandle);
         }
-        let World { bodies, arbiters, handlers, post_step, .. } = self;
-        collision::end_arbiters_of(h.index(), bodies, arbiters, handlers, post_step);
+        let World { bodies, paths, arbiters, handlers, post_step, .. } = self;
+        collision::end_arbiters_of(h.index(), bodies, paths, arbiters, handlers, post_step);
         self.remove_joints_of(h);
         let body = self.bodies.remove(h).ok_or(Error::StaleHandle);
         if let Ok(b) = &body {

@@ -83,8 +83,16 @@ impl World<'_> {
         let removed = list.get(i).copied().ok_or(Error::OutOfRange { what: "shape index" })?;
         list.copy_within(i.saturating_add(1)..n, i);
         self.place_shapes(h, &mut list, n.saturating_sub(1))?;
-        let World { bodies, arbiters, handlers, post_step, .. } = self;
-        collision::end_arbiters_of_shape(h.index(), index, bodies, arbiters, handlers, post_step);
+        let World { bodies, paths, arbiters, handlers, post_step, .. } = self;
+        collision::end_arbiters_of_shape(
+            h.index(),
+            (index, removed.sensor),
+            bodies,
+            paths,
+            arbiters,
+            handlers,
+            post_step,
+        );
         self.drain_post_step_outside_step();
         Ok(removed)
     }
@@ -313,7 +321,7 @@ impl World<'_> {
                 MassData::from_density(density, area, unit_inertia)?
             };
             (s.mass, s.inertia) = (m.mass, m.inertia);
-            total = total + m.mass;
+            total += m.mass;
         }
         if let MassSpec::Mass(m) = spec {
             if total <= ZERO {
