@@ -23,7 +23,7 @@ use crate::collide::{
     collide_chain_segment_polygon, collide_circles, collide_polygon_capsule, collide_polygon_circle,
     collide_polygons, collide_segment_capsule, collide_segment_circle, collide_segment_polygon, Manifold,
 };
-use crate::compound::{is_compound, shape_of, shapes_of, BodyShape};
+use crate::compound::{is_compound, shape_of, shapes_of, BodyShape, ShapeData, MAX_SHAPES_PER_BODY};
 use crate::constraint::{Joint, JointMarker};
 use crate::error::Error;
 use crate::events::{ContactBeginEvent, ContactHitEvent, Events, TOUCH_DISTANCE};
@@ -102,11 +102,12 @@ impl BroadPhase<'_> {
 /// rule, a veto), and Box2D's category/mask/group rule on the shapes'
 /// filters ([`CollisionFilter::accepts`](crate::CollisionFilter::accepts));
 /// never two segments or chains.
-pub(crate) fn contact_shapes(a: &Body, sa: &BodyShape, b: &Body, sb: &BodyShape) -> bool {
+#[inline(always)]
+pub(crate) fn contact_shapes<S: ShapeData>(a: &Body, sa: &S, b: &Body, sb: &S) -> bool {
     (a.body_type == BodyType::Dynamic || b.body_type == BodyType::Dynamic)
         && (a.collision_groups & b.collision_groups) == 0
-        && sa.filter.accepts(&sb.filter)
-        && !both_lines(&sa.shape, &sb.shape)
+        && sa.filters().accepts(sb.filters())
+        && !both_lines(sa.geometry(), sb.geometry())
 }
 
 /// True when both shapes are segments or chains (which never collide).
@@ -119,7 +120,7 @@ fn both_lines(a: &Shape, b: &Shape) -> bool {
 /// True when two one-shape bodies make a pair the engine tracks (see
 /// [`wants_shapes`]).
 pub(crate) fn wants_pair(a: &Body, b: &Body) -> bool {
-    wants_shapes(a, &BodyShape::of_body(a), b, &BodyShape::of_body(b))
+    wants_shapes(a, a, b, b)
 }
 
 /// True when shape `sa` of body `a` and shape `sb` of body `b` make a pair
@@ -130,19 +131,23 @@ pub(crate) fn wants_pair(a: &Body, b: &Body) -> bool {
 /// never meet segments (neither has an inside to push out of). Sensors do
 /// not detect chains (a chain pair is one arbiter per link, not one overlap).
 /// Two shapes of one body never pair.
-pub(crate) fn wants_shapes(a: &Body, sa: &BodyShape, b: &Body, sb: &BodyShape) -> bool {
-    if !sa.sensor && !sb.sensor {
+#[inline(always)]
+pub(crate) fn wants_shapes<S: ShapeData>(a: &Body, sa: &S, b: &Body, sb: &S) -> bool {
+    let (sensor_a, sensor_b) = (sa.senses(), sb.senses());
+    if !sensor_a && !sensor_b {
         return contact_shapes(a, sa, b, sb);
     }
-    if (sa.sensor && sb.sensor) || matches!(sa.shape, Shape::Chain(_)) || matches!(sb.shape, Shape::Chain(_))
+    if (sensor_a && sensor_b)
+        || matches!(sa.geometry(), Shape::Chain(_))
+        || matches!(sb.geometry(), Shape::Chain(_))
     {
         return false;
     }
     let moving = a.body_type != BodyType::Static || b.body_type != BodyType::Static;
     moving
-        && !both_lines(&sa.shape, &sb.shape)
+        && !both_lines(sa.geometry(), sb.geometry())
         && (a.collision_groups & b.collision_groups) == 0
-        && sa.filter.accepts(&sb.filter)
+        && sa.filters().accepts(sb.filters())
 }
 
 /// True when two bodies have a pair of shapes the engine tracks
@@ -151,7 +156,8 @@ fn wants_bodies(a: &Body, b: &Body, shapes: &ShapeStore<'_>) -> bool {
     if !is_compound(a) && !is_compound(b) {
         return wants_pair(a, b);
     }
-    shapes_of(a, shapes).any(|(_, sa)| shapes_of(b, shapes).any(|(_, sb)| wants_shapes(a, &sa, b, &sb)))
+    let (copy_a, copy_b) = (shape_copies(a, shapes), shape_copies(b, shapes));
+    copy_a.iter().any(|sa| copy_b.iter().any(|sb| wants_shapes(a, sa, b, sb)))
 }
 
 /// The shapes an arbiter is for, on its body A and body B.
@@ -163,6 +169,11 @@ fn arbiter_shapes(
     shapes: &ShapeStore<'_>,
 ) -> Option<(BodyShape, BodyShape)> {
     Some((shape_of(a, arb.shape_a(), shapes)?, shape_of(b, arb.shape_b(), shapes)?))
+}
+
+/// A body's shapes, copied (a compound pair's cold paths).
+fn shape_copies(b: &Body, shapes: &ShapeStore<'_>) -> heapless::Vec<BodyShape, MAX_SHAPES_PER_BODY> {
+    shapes_of(b, shapes).map(|(_, s)| s).collect()
 }
 
 /// True when an arbiter is a sensor pair: one of its shapes is a sensor; it
@@ -355,46 +366,100 @@ pub(crate) fn update_arbiters(
         let (Some((ha, ba)), Some((hb, bb))) = (live_at(bodies, key.0), live_at(bodies, key.1)) else {
             continue;
         };
-        // The key's shapes: the lower slot's, then the higher's.
-        let (lo, hi) = ((key.2 >> 3) & MAX_SHAPE_INDEX, key.2 & MAX_SHAPE_INDEX);
-        let (Some(sx), Some(sy)) = (shape_of(ba, lo, paths), shape_of(bb, hi, paths)) else {
-            continue;
-        };
-        pair_arbiter((ha, ba, &sx, lo), (hb, bb, &sy, hi), key_link(key), previous, arb);
-        let (a, b, sa, sb) = if arb.body_a == ha { (ba, bb, sx, sy) } else { (bb, ba, sy, sx) };
-        if sa.sensor || sb.sensor {
-            // Overlap is judged after the solve ([`touch_events`]); a sensor
-            // pair is kept while its boxes meet or it overlaps, never solved.
-            arb.solve = false;
-            arb.count = 0;
-            arb.set_touching(false);
-            if (candidate && wants_shapes(a, &sa, b, &sb)) || arb.state == ArbiterState::Contact {
-                out = out.saturating_add(1);
-            }
-            continue;
-        }
-        // Contact points only within the speculative distance: the boxes
-        // (stretched along the motion for continuous collision) found the
-        // pair; the narrow phase runs only when the bodies' own boxes are
-        // that close (for compound bodies, the key stream checked the shapes').
-        let near = boxes_within(a.aabb, b.aabb, SPECULATIVE_DISTANCE);
-        let manifold = if candidate && near && wants_shapes(a, &sa, b, &sb) {
-            collide_body_shapes((a, &sa), (b, &sb), paths, arb.link(), SPECULATIVE_DISTANCE)
+        let link = key_link(key);
+        let keep = if !is_compound(ba) && !is_compound(bb) {
+            // One shape each: the bodies' own data (the common case).
+            let (x, y) = ((ha, ba, ba, 0), (hb, bb, bb, 0));
+            update_pair(
+                ctx,
+                (link, candidate, previous),
+                arb,
+                x,
+                y,
+                bodies,
+                paths,
+                handlers,
+                post_step,
+                events,
+            )
         } else {
-            Manifold::EMPTY
+            // The key's shapes: the lower slot's, then the higher's.
+            let (lo, hi) = ((key.2 >> 3) & MAX_SHAPE_INDEX, key.2 & MAX_SHAPE_INDEX);
+            let (Some(sx), Some(sy)) = (shape_of(ba, lo, paths), shape_of(bb, hi, paths)) else { continue };
+            let (x, y) = ((ha, ba, &sx, lo), (hb, bb, &sy, hi));
+            update_pair(
+                ctx,
+                (link, candidate, previous),
+                arb,
+                x,
+                y,
+                bodies,
+                paths,
+                handlers,
+                post_step,
+                events,
+            )
         };
-        arb.friction = mix_friction(sa.friction, sb.friction);
-        arb.restitution = mix_restitution(sa.restitution, sb.restitution);
-        let mut ctx_cb = CallbackContext { bodies, post_step: post_step.view() };
-        if lifecycle(arb, &manifold, handlers, &mut ctx_cb, ctx.arbiter_persistence, events) {
-            if arb.count > 0 && arb.state == ArbiterState::Contact && !arb.is_touching() {
-                approach(arb, a, b);
-            }
+        if keep {
             out = out.saturating_add(1);
         }
     }
     arbiters.swap_in_next(out);
     skipped
+}
+
+/// One key's arbiter for this step, written into `arb`: shape `x.2` (index
+/// `x.3`) of body `x.1` and shape `y.2` of body `y.1`, lower slot first,
+/// for the chain link `key.0`, `key.1` whether the key is a candidate and
+/// `key.2` the arbiter it had (see [`update_arbiters`]). Returns whether to
+/// keep it.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn update_pair<S: ShapeData>(
+    ctx: &StepContext,
+    (link, candidate, previous): (u32, bool, Option<&Arbiter>),
+    arb: &mut Arbiter,
+    x: (BodyHandle, &Body, &S, u32),
+    y: (BodyHandle, &Body, &S, u32),
+    bodies: &Arena<'_, Body>,
+    paths: &ShapeStore<'_>,
+    handlers: &mut HandlerTable<'_>,
+    post_step: &mut PostStepQueue<'_>,
+    events: &mut Events<'_>,
+) -> bool {
+    let (ha, ba, sx) = (x.0, x.1, x.2);
+    let (bb, sy) = (y.1, y.2);
+    pair_arbiter(x, y, link, previous, arb);
+    let (a, b, sa, sb) = if arb.body_a == ha { (ba, bb, sx, sy) } else { (bb, ba, sy, sx) };
+    if sa.senses() || sb.senses() {
+        // Overlap is judged after the solve ([`touch_events`]); a sensor
+        // pair is kept while its boxes meet or it overlaps, never solved.
+        arb.solve = false;
+        arb.count = 0;
+        arb.set_touching(false);
+        return (candidate && wants_shapes(a, sa, b, sb)) || arb.state == ArbiterState::Contact;
+    }
+    // Contact points only within the speculative distance: the boxes
+    // (stretched along the motion for continuous collision) found the
+    // pair; the narrow phase runs only when the bodies' own boxes are
+    // that close (for compound bodies, the key stream checked the shapes').
+    let near = boxes_within(a.aabb, b.aabb, SPECULATIVE_DISTANCE);
+    let manifold = if candidate && near && wants_shapes(a, sa, b, sb) {
+        collide_body_shapes((a, sa), (b, sb), paths, arb.link(), SPECULATIVE_DISTANCE)
+    } else {
+        Manifold::EMPTY
+    };
+    let ((fa, ra), (fb, rb)) = (sa.material(), sb.material());
+    arb.friction = mix_friction(fa, fb);
+    arb.restitution = mix_restitution(ra, rb);
+    let mut ctx_cb = CallbackContext { bodies, post_step: post_step.view() };
+    if lifecycle(arb, &manifold, handlers, &mut ctx_cb, ctx.arbiter_persistence, events) {
+        if arb.count > 0 && arb.state == ArbiterState::Contact && !arb.is_touching() {
+            approach(arb, a, b);
+        }
+        return true;
+    }
+    false
 }
 
 /// The candidate keys in order: each candidate body pair's key with link 0,
@@ -409,6 +474,8 @@ struct CandidateKeys<'c, 'b, 'a> {
     i: usize,
     /// The key `peek` returns.
     current: Option<ArbiterKey>,
+    /// The current pair has that one key (two one-shape bodies, no chain).
+    single: bool,
 }
 
 /// An arbiter's key: (lower body slot, higher body slot, sub-key; see
@@ -423,7 +490,7 @@ fn key_link(key: ArbiterKey) -> u32 {
 
 impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
     fn new(pairs: &'c [(u32, u32)], bodies: &'b Arena<'a, Body>, shapes: &'b ShapeStore<'a>) -> Self {
-        let mut k = Self { pairs, bodies, shapes, i: 0, current: None };
+        let mut k = Self { pairs, bodies, shapes, i: 0, current: None, single: false };
         k.current = k.key_at_or_after(None);
         k
     }
@@ -433,6 +500,12 @@ impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
     }
 
     fn advance(&mut self) {
+        if self.single {
+            // The pair's only key: on to the next pair.
+            self.i = self.i.saturating_add(1);
+            self.current = self.key_at_or_after(None);
+            return;
+        }
         let after = self.current.map(|k| (k.0, k.1, k.2.saturating_add(1)));
         self.current = self.key_at_or_after(after);
     }
@@ -449,7 +522,15 @@ impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
         }
         loop {
             let &(x, y) = self.pairs.get(self.i)?;
-            if let Some(sub) = self.next_sub(x, y, 0) {
+            let (Some(bx), Some(by)) = (self.bodies.get_at(x), self.bodies.get_at(y)) else {
+                self.i = self.i.saturating_add(1);
+                continue;
+            };
+            self.single = single_key(bx) && single_key(by);
+            if self.single {
+                return Some((x, y, 0));
+            }
+            if let Some(sub) = self.next_sub_expanded(bx, by, 0) {
                 return Some((x, y, sub));
             }
             self.i = self.i.saturating_add(1);
@@ -462,8 +543,18 @@ impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
     /// let meet the chain; for compound bodies, the shape pairs (lower slot's
     /// shape outer) the filters want whose boxes are within the speculative
     /// distance.
+    #[inline]
     fn next_sub(&self, x: u32, y: u32, from: u32) -> Option<u32> {
         let (bx, by) = (self.bodies.get_at(x)?, self.bodies.get_at(y)?);
+        if single_key(bx) && single_key(by) {
+            return (from == 0).then_some(0);
+        }
+        self.next_sub_expanded(bx, by, from)
+    }
+
+    /// [`CandidateKeys::next_sub`] for a pair with a chain or a compound body.
+    #[inline(never)]
+    fn next_sub_expanded(&self, bx: &Body, by: &Body, from: u32) -> Option<u32> {
         let (link0, lo0, hi0) = (from >> (2 * 3), (from >> 3) & MAX_SHAPE_INDEX, from & MAX_SHAPE_INDEX);
         let chain_low = matches!(bx.shape, Shape::Chain(_));
         if chain_low || matches!(by.shape, Shape::Chain(_)) {
@@ -509,6 +600,13 @@ impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
         }
         None
     }
+}
+
+/// True when a body has one shape and is not a chain: a pair of two such
+/// bodies has one key.
+#[inline]
+fn single_key(b: &Body) -> bool {
+    !is_compound(b) && !matches!(b.shape, Shape::Chain(_))
 }
 
 /// The world box of shape `s` of body `b` at the body's transform `xf`.
@@ -869,9 +967,9 @@ fn live_at<'b>(bodies: &'b Arena<'_, Body>, index: u32) -> Option<(BodyHandle, &
 /// these same bodies (a body removed and a new one in its slot has a new
 /// handle; the key already matched the shapes), else a new one with the
 /// bodies in canonical order.
-fn pair_arbiter(
-    x: (BodyHandle, &Body, &BodyShape, u32),
-    y: (BodyHandle, &Body, &BodyShape, u32),
+fn pair_arbiter<S: ShapeData>(
+    x: (BodyHandle, &Body, &S, u32),
+    y: (BodyHandle, &Body, &S, u32),
     link: u32,
     previous: Option<&Arbiter>,
     out: &mut Arbiter,
@@ -885,7 +983,7 @@ fn pair_arbiter(
     }
     // The manual's order: the shape of the smaller kind first (circles
     // before polygons); the key order breaks ties.
-    let ((first, fa, fi), (second, fb, si)) = if sb.shape.kind_rank() < sa.shape.kind_rank() {
+    let ((first, fa, fi), (second, fb, si)) = if sb.geometry().kind_rank() < sa.geometry().kind_rank() {
         ((hb, b, ib), (ha, a, ia))
     } else {
         ((ha, a, ia), (hb, b, ib))
@@ -930,27 +1028,50 @@ fn proxy(ctx: &StepContext, b: &Body) -> Proxy {
 /// `b`, in canonical order (normal from A to B), with points reported up to
 /// `margin` apart; anchors about the bodies' centres of mass.
 #[inline]
-fn collide_body_shapes(
-    (a, sa): (&Body, &BodyShape),
-    (b, sb): (&Body, &BodyShape),
+fn collide_body_shapes<S: ShapeData>(
+    (a, sa): (&Body, &S),
+    (b, sb): (&Body, &S),
     paths: &ShapeStore<'_>,
     link: u32,
     margin: Scalar,
 ) -> Manifold {
-    let (Some(ra), Some(rb)) = (ShapeRef::of(&sa.shape, paths, link), ShapeRef::of(&sb.shape, paths, link))
+    if !S::PLACED {
+        return collide_bodies(a, b, paths, link, margin);
+    }
+    collide_compound((a, sa), (b, sb), paths, link, margin)
+}
+
+/// The contact manifold of two one-shape bodies in canonical order (normal
+/// from A to B), with points reported up to `margin` apart.
+#[inline]
+fn collide_bodies(a: &Body, b: &Body, paths: &ShapeStore<'_>, link: u32, margin: Scalar) -> Manifold {
+    match (ShapeRef::of(&a.shape, paths, link), ShapeRef::of(&b.shape, paths, link)) {
+        (Some(sa), Some(sb)) => collide_canonical(sa, a.transform(), sb, b.transform(), margin),
+        _ => Manifold::EMPTY,
+    }
+}
+
+/// [`collide_body_shapes`] when a body is compound.
+#[inline(never)]
+fn collide_compound<S: ShapeData>(
+    (a, sa): (&Body, &S),
+    (b, sb): (&Body, &S),
+    paths: &ShapeStore<'_>,
+    link: u32,
+    margin: Scalar,
+) -> Manifold {
+    let (Some(ra), Some(rb)) =
+        (ShapeRef::of(sa.geometry(), paths, link), ShapeRef::of(sb.geometry(), paths, link))
     else {
         return Manifold::EMPTY;
     };
-    let (ca, cb) = (is_compound(a), is_compound(b));
-    let (xa, xb) = (sa.world(a.transform(), ca), sb.world(b.transform(), cb));
+    let (xa, xb) = (sa.place(a.transform()), sb.place(b.transform()));
     let mut m = collide_canonical(ra, xa, rb, xb, margin);
-    if ca || cb {
-        // The pair functions give anchors about the shapes' frames.
-        let (da, db) = (xa.p - a.position, xb.p - b.position);
-        for p in m.points.iter_mut().take(m.count) {
-            p.anchor_a += da;
-            p.anchor_b += db;
-        }
+    // The pair functions give anchors about the shapes' frames.
+    let (da, db) = (xa.p - a.position, xb.p - b.position);
+    for p in m.points.iter_mut().take(m.count) {
+        p.anchor_a += da;
+        p.anchor_b += db;
     }
     m
 }

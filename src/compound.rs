@@ -203,7 +203,8 @@ impl BodyShape {
         }
     }
 
-    /// The shape's frame in the world, for its body at `body`.
+    /// The shape's frame in the world, for its body at `body` (a one-shape
+    /// body's shape is at the body's own frame).
     #[inline]
     pub(crate) fn world(&self, body: Transform, compound: bool) -> Transform {
         if compound {
@@ -231,19 +232,6 @@ pub(crate) fn is_compound(b: &Body) -> bool {
     b.shapes != NO_SHAPE
 }
 
-/// Shape `index` of body `b` (0 is the first), or `None` past its last.
-#[inline]
-pub(crate) fn shape_of(b: &Body, index: u32, store: &ShapeStore<'_>) -> Option<BodyShape> {
-    if !is_compound(b) {
-        return (index == 0).then(|| BodyShape::of_body(b));
-    }
-    let mut at = b.shapes;
-    for _ in 0..index {
-        at = store.slots.get_at(at)?.next;
-    }
-    store.slots.get_at(at).map(|s| s.data)
-}
-
 /// Every shape of body `b` in order, with its index.
 pub(crate) fn shapes_of<'s>(
     b: &Body,
@@ -267,4 +255,83 @@ pub(crate) fn shapes_of<'s>(
         index = index.saturating_add(1);
         Some((i, slot.data))
     })
+}
+
+/// One shape's data as the step reads it: implemented by a one-shape
+/// [`Body`] (its own fields: the common case, nothing copied) and by a
+/// compound body's [`BodyShape`], so the pair code is compiled once for each.
+pub(crate) trait ShapeData {
+    /// True when the shape has a frame of its own on the body.
+    const PLACED: bool;
+    /// The shape.
+    fn geometry(&self) -> &Shape;
+    /// The collision filter.
+    fn filters(&self) -> &CollisionFilter;
+    /// The sensor flag.
+    fn senses(&self) -> bool;
+    /// Friction and restitution.
+    fn material(&self) -> (Scalar, Scalar);
+    /// The shape's frame in the world for its body at `body`.
+    fn place(&self, body: Transform) -> Transform;
+}
+
+impl ShapeData for Body {
+    const PLACED: bool = false;
+    #[inline(always)]
+    fn geometry(&self) -> &Shape {
+        &self.shape
+    }
+    #[inline(always)]
+    fn filters(&self) -> &CollisionFilter {
+        &self.filter
+    }
+    #[inline(always)]
+    fn senses(&self) -> bool {
+        self.sensor
+    }
+    #[inline(always)]
+    fn material(&self) -> (Scalar, Scalar) {
+        (self.friction, self.restitution)
+    }
+    #[inline(always)]
+    fn place(&self, body: Transform) -> Transform {
+        body
+    }
+}
+
+impl ShapeData for BodyShape {
+    const PLACED: bool = true;
+    #[inline(always)]
+    fn geometry(&self) -> &Shape {
+        &self.shape
+    }
+    #[inline(always)]
+    fn filters(&self) -> &CollisionFilter {
+        &self.filter
+    }
+    #[inline(always)]
+    fn senses(&self) -> bool {
+        self.sensor
+    }
+    #[inline(always)]
+    fn material(&self) -> (Scalar, Scalar) {
+        (self.friction, self.restitution)
+    }
+    #[inline(always)]
+    fn place(&self, body: Transform) -> Transform {
+        body.compose(self.local)
+    }
+}
+
+/// Shape `index` of body `b` (0 is the first), copied; `None` past its last.
+#[inline]
+pub(crate) fn shape_of(b: &Body, index: u32, store: &ShapeStore<'_>) -> Option<BodyShape> {
+    if !is_compound(b) {
+        return (index == 0).then(|| BodyShape::of_body(b));
+    }
+    let mut at = b.shapes;
+    for _ in 0..index {
+        at = store.slots.get_at(at)?.next;
+    }
+    store.slots.get_at(at).map(|s| s.data)
 }
