@@ -134,6 +134,32 @@ pub const ARBITER_LINKS: u32 = 1 << 31;
 const SHAPES_SHIFT: u32 = 26;
 /// Bytes of one joint record.
 pub const JOINT_RECORD: usize = 160;
+/// Bit 31 of the properties count: the body records are followed by the
+/// shapes section (the shape store's allocator state, one [`SHAPE_RECORD`]
+/// per slot it has used, then the compound bodies' list heads). Written only
+/// when the world's shape store has used a slot, so a world that never had a
+/// compound body encodes as before.
+pub const SHAPES: u32 = 1 << 31;
+/// Bytes of one slot of the shape store in the shapes section.
+///
+/// | offset | bytes | field |
+/// |---|---|---|
+/// | 0 | 4 | generation |
+/// | 4 | 4 | bit 31 set for a used slot (bits 0–30 then 0); else bits 0–29 the free-list successor |
+/// | 8 | 4 | the owner: the body's slot |
+/// | 12 | 4 | the next shape's slot of the body's list (`u32::MAX` after its last) |
+/// | 16 | 1 + 24 | the shape, as the properties record's first 25 bytes |
+/// | 41 | 16 + 16 | its frame on the body: offset (x, y) and rotation (cos, sin) |
+/// | 73 | 8 × 4 | mass, inertia, friction, restitution |
+/// | 105 | 8 + 8 + 4 | filter category bits, mask bits, group index (i32) |
+/// | 125 | 1 | sensor (0 or 1) |
+///
+/// Every byte after the first 8 of a free slot is zero.
+pub const SHAPE_RECORD: usize = 126;
+/// Bytes of one entry of the compound bodies' list that closes the shapes
+/// section: the body's slot and the slot of its first shape (u32 each), in
+/// body-slot order. A body's shape count is the length of its list.
+pub const COMPOUND_RECORD: usize = 8;
 
 /// The body-type byte of a properties record: bits 0–1 the type (0 static,
 /// 1 kinematic, 2 dynamic), bit 4 (0x10) the bullet flag, bit 5 (0x20) the
