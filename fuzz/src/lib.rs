@@ -231,7 +231,7 @@ pub struct WorldSpec {
     pub restitution_threshold: Option<S>,
     pub arbiter_persistence: Option<u32>,
     /// Capacities: bodies % 33, paths % 17, contacts % 129, joints % 33;
-    /// chain vertices 4 × (paths % 17).
+    /// chain vertices 4 × (paths % 17); shapes of compound bodies as bodies.
     pub bodies: u8,
     pub paths: u8,
     pub contacts: u8,
@@ -281,6 +281,7 @@ impl WorldSpec {
             post_step_callbacks: arphysics::handler::DEFAULT_POST_STEP_CALLBACKS,
             events: 16,
             chain_vertices: 4 * usize::from(self.paths % 17),
+            shapes: usize::from(self.bodies % 33),
         }
     }
 }
@@ -715,6 +716,11 @@ pub enum Op {
     /// `restore` a snapshot this run took (the n-th, modulo their number),
     /// possibly corrupted first.
     Restore(u8, Option<Corruption>),
+    /// `add_shape`: the shape, at an offset (body frame, m) and angle
+    /// (radians), with a density; the outcome is the shape's index.
+    AddShape(HandleRef, ShapeSpec, V, S, S),
+    /// `remove_shape` of shape n % 9 (8 is past every body's last).
+    RemoveShape(HandleRef, u8),
 }
 
 /// A query filter.
@@ -1785,6 +1791,26 @@ impl<'w> Runner<'w> {
                     }
                 }
             }
+            Op::AddShape(h, shape, offset, angle, density) => {
+                let shape = match shape {
+                    ShapeSpec::Circle(r) => Shape::Circle { radius: r.get() },
+                    ShapeSpec::Polygon(p) => Shape::Polygon(p.get(&self.paths)),
+                    ShapeSpec::Capsule(..) | ShapeSpec::Segment(..) => match shape.line_shape() {
+                        Some(Ok(s)) => s,
+                        Some(Err(e)) => return Outcome::Err(e),
+                        None => return Outcome::Err(Error::OutOfRange { what: "shape" }),
+                    },
+                };
+                let def = arphysics::ShapeDef::new(shape)
+                    .offset(offset.get())
+                    .angle(angle.get())
+                    .density(density.get());
+                match self.world.add_shape(body(h, self), def) {
+                    Ok(i) => Outcome::Value(u64::from(i)),
+                    Err(e) => Outcome::Err(e),
+                }
+            }
+            Op::RemoveShape(h, i) => unit_outcome(self.world.remove_shape(body(h, self), u32::from(i % 9))),
             Op::Restore(i, corruption) => {
                 if self.snapshots.is_empty() {
                     return Outcome::Value(0);

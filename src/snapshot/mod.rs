@@ -20,7 +20,15 @@
 //!    that share them);
 //! 4. the body allocator and one 64-byte record per body slot (generation,
 //!    free-list link or flags and properties index, position, rotation,
-//!    velocities);
+//!    velocities); then, when bit 31 of the properties count is set
+//!    ([`SHAPES`]: the world's shape store has used a slot), the shapes
+//!    section: the shape store's allocator, one [`SHAPE_RECORD`] per slot it
+//!    has used (generation, free-list link or used flag, owner body, next
+//!    shape, the shape as the properties record holds one, its frame on the
+//!    body, mass, inertia, material, filter, sensor flag), and the compound
+//!    bodies' list ([`COMPOUND_RECORD`]: each compound body's slot and first
+//!    shape slot, in body-slot order; a body's shape count is its list's
+//!    length, and one-shape bodies are in neither);
 //! 5. the generator allocator and the force generators;
 //! 6. the arbiters (58 bytes each: the pair, state and touching flag, steps since separation, and
 //!    per contact point its feature id and accumulated normal and friction
@@ -38,9 +46,10 @@
 //!    byte before it.
 //!
 //! Fixed-size records let `restore` check a buffer completely (free lists
-//! included) before it changes anything. A live body costs 64 bytes, plus 102 for
+//! included) before it changes anything. A live body costs 64 bytes, plus 118 for
 //! its properties unless it shares them with the body before it (a pyramid's
-//! boxes do); an arbiter 58 bytes.
+//! boxes do), plus, for a compound body, 8 and 126 per shape; an arbiter 58
+//! bytes.
 //!
 //! # Integrity, length and hashes
 //! [`World::restore`] reads the framing, then verifies the checksum over the
