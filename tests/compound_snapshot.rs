@@ -14,22 +14,12 @@ use arphysics::snapshot::{
     PROPS_RECORD, SHAPES, SHAPE_RECORD, TRAILER,
 };
 use arphysics::{
-    BodyDef, BodyHandle, BodyShape, Capacities, Error, GravityForceGenerator, PathHandle, PolygonPath, Rect,
-    Scalar, ShapeDef, Vector2, World, WorldDef,
+    BodyDef, BodyHandle, BodyShape, Capacities, Error, PathHandle, PolygonPath, ShapeDef, World,
 };
 use twox_hash::XxHash64;
 
-fn s(x: f64) -> Scalar {
-    Scalar::from_num(x)
-}
-
-fn v(x: f64, y: f64) -> Vector2 {
-    Vector2::new(s(x), s(y))
-}
-
-fn dt() -> Scalar {
-    Scalar::ONE / Scalar::from_num(60)
-}
+mod common;
+use common::{dt, s, v, world_with};
 
 /// Bytes of the world part: step count (8), settings (88), paths checksum (8).
 const WORLD_BYTES: usize = 104;
@@ -48,10 +38,7 @@ struct Scene {
 }
 
 fn scene(shapes: usize) -> Scene {
-    let bounds = Rect::from_corners(v(-50.0, -50.0), v(50.0, 50.0));
-    let caps = Capacities { shapes, ..Capacities::for_bodies(16) };
-    let mut w = World::with_capacities(WorldDef::with_bounds(bounds), caps).expect("world");
-    w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0))).expect("gravity");
+    let mut w = world_with(50.0, 50.0, Capacities { shapes, ..Capacities::for_bodies(16) }, true);
     let ground = w.add_path(PolygonPath::rectangle(s(20.0), s(1.0)).expect("box")).expect("path");
     let bar = w.add_path(PolygonPath::rectangle(s(2.0), s(0.5)).expect("bar")).expect("path");
     let post = w.add_path(PolygonPath::rectangle(s(0.5), s(1.5)).expect("post")).expect("path");
@@ -209,6 +196,7 @@ fn restore_then_step_equals_stepping_on_for_an_l_resting_on_a_box() {
     assert_eq!(snap[snap.len() - TRAILER..], hash.to_le_bytes(), "the hash is the trailer");
     let shapes = shapes_of(w, l);
     assert_eq!(shapes.len(), 2);
+    let body = *w.body(l).expect("live");
     step(w, 60);
     let (hash_on, poses_on) = (w.state_hash(), poses(w));
     // Resting: after 1.5 s on the box the L has stopped falling.
@@ -219,6 +207,9 @@ fn restore_then_step_equals_stepping_on_for_an_l_resting_on_a_box() {
     assert_eq!(w.state_hash(), hash);
     assert_eq!(take(w), snap, "restore then snapshot gives the same bytes");
     assert_eq!(shapes_of(w, l), shapes);
+    // Derived data too: shape count, bounding radius, box.
+    assert_eq!(*w.body(l).expect("live"), body);
+    assert_eq!(w.body(l).expect("live").shape_count(), 2);
     step(w, 60);
     assert_eq!(w.state_hash(), hash_on);
     assert_eq!(poses(w), poses_on);
@@ -234,11 +225,7 @@ fn restore_then_step_equals_stepping_on_for_an_l_resting_on_a_box() {
 
 #[test]
 fn restore_comes_back_across_remove_shape_add_shape_and_remove_body() {
-    let mut sc = scene(16);
-    let l = sc.add_l(-3.0, true);
-    let row = sc.add_row(2.0);
-    step(&mut sc.w, 20);
-    let snap = take(&sc.w);
+    let (mut sc, l, row, snap) = l_and_row();
     let hash = sc.w.state_hash();
     let (l_shapes, row_shapes) = (shapes_of(&sc.w, l), shapes_of(&sc.w, row));
     step(&mut sc.w, 60);
@@ -320,13 +307,20 @@ fn a_world_that_never_had_a_compound_body_encodes_as_before() {
     assert_eq!(a.w.state_hash(), b.w.state_hash());
 }
 
-#[test]
-fn the_shapes_section_has_its_documented_size_within_max_snapshot_len() {
+/// The L (body slot 1) and the row (slot 2), resting after 20 steps, and
+/// their snapshot.
+fn l_and_row() -> (Scene, BodyHandle, BodyHandle, Vec<u8>) {
     let mut sc = scene(16);
     let l = sc.add_l(-3.0, true);
     let row = sc.add_row(2.0);
     step(&mut sc.w, 20);
     let snap = take(&sc.w);
+    (sc, l, row, snap)
+}
+
+#[test]
+fn the_shapes_section_has_its_documented_size_within_max_snapshot_len() {
+    let (sc, l, row, snap) = l_and_row();
     let sec = Section::of(&snap);
     // Two shapes of the L and eight of the row; slots used, none free.
     assert_eq!((sec.used, sec.compounds), (10, 2));
@@ -351,14 +345,10 @@ fn the_shapes_section_has_its_documented_size_within_max_snapshot_len() {
     assert!(snap.len() <= full.w.max_snapshot_len(), "{} > {}", snap.len(), full.w.max_snapshot_len());
 }
 
-/// The scene the corruption tests start from: the row (body slot 1), the L
-/// (slot 2), resting; the snapshot and its section.
+/// The scene the corruption tests start from ([`l_and_row`]) with its
+/// snapshot's shapes section.
 fn resting_pair() -> (Scene, BodyHandle, BodyHandle, Vec<u8>, Section) {
-    let mut sc = scene(16);
-    let row = sc.add_row(2.0);
-    let l = sc.add_l(-3.0, true);
-    step(&mut sc.w, 20);
-    let snap = take(&sc.w);
+    let (sc, l, row, snap) = l_and_row();
     let sec = Section::of(&snap);
     (sc, row, l, snap, sec)
 }
@@ -382,11 +372,13 @@ fn broken_shape_lists_are_refused_with_the_world_unchanged() {
         let bad = corrupt(&|b| put_u32(b, sec.slot(l_list[1], OWNER), owner));
         refused(&mut sc.w, &bad);
     }
-    // A ninth shape: the row's last circle followed by the L's post, now
-    // the row's (the row is listed first).
+    // A ninth shape: the L's post followed by the row's circles, now the
+    // L's (the L is listed first).
     let bad = corrupt(&|b| {
-        put_u32(b, sec.slot(row_list[7], NEXT), l_list[1]);
-        put_u32(b, sec.slot(l_list[1], OWNER), row.index());
+        put_u32(b, sec.slot(l_list[1], NEXT), row_list[0]);
+        for &slot in &row_list {
+            put_u32(b, sec.slot(slot, OWNER), l.index());
+        }
     });
     assert!(refused(&mut sc.w, &bad).contains("longer than 8"));
     // A slot in two lists: the L's list starting at the row's first slot,
@@ -402,7 +394,7 @@ fn broken_shape_lists_are_refused_with_the_world_unchanged() {
     let bad = corrupt(&|b| put_u32(b, sec.slot(l_list[0], NEXT), sec.used));
     refused(&mut sc.w, &bad);
     // The same body listed twice, and a one-shape body listed.
-    let bad = corrupt(&|b| put_u32(b, sec.list_at + COMPOUND_RECORD, row.index()));
+    let bad = corrupt(&|b| put_u32(b, sec.list_at + COMPOUND_RECORD, l.index()));
     assert!(refused(&mut sc.w, &bad).contains("out of order"));
     let bad = corrupt(&|b| put_u32(b, sec.list_at, 0));
     refused(&mut sc.w, &bad);

@@ -716,9 +716,11 @@ pub enum Op {
     /// `restore` a snapshot this run took (the n-th, modulo their number),
     /// possibly corrupted first.
     Restore(u8, Option<Corruption>),
-    /// `add_shape`: the shape, at an offset (body frame, m) and angle
-    /// (radians), with a density; the outcome is the shape's index.
-    AddShape(HandleRef, ShapeSpec, V, S, S),
+    /// `add_shape` of the shape given, or else of a circle of radius
+    /// (1 + n % 32) / 32 m, at the offset (x / 16, y / 16) m on the body,
+    /// turned by n / 32 radians, density 1 (mostly valid, so that bodies get
+    /// several shapes); the outcome is the shape's index.
+    AddShape(HandleRef, u8, i8, i8, Option<ShapeSpec>),
     /// `remove_shape` of shape n % 9 (8 is past every body's last).
     RemoveShape(HandleRef, u8),
 }
@@ -1791,20 +1793,24 @@ impl<'w> Runner<'w> {
                     }
                 }
             }
-            Op::AddShape(h, shape, offset, angle, density) => {
+            Op::AddShape(h, n, x, y, shape) => {
                 let shape = match shape {
-                    ShapeSpec::Circle(r) => Shape::Circle { radius: r.get() },
-                    ShapeSpec::Polygon(p) => Shape::Polygon(p.get(&self.paths)),
-                    ShapeSpec::Capsule(..) | ShapeSpec::Segment(..) => match shape.line_shape() {
+                    None => Shape::Circle { radius: Scalar::from_bits((1 + i64::from(n % 32)) << 27) },
+                    Some(ShapeSpec::Circle(r)) => Shape::Circle { radius: r.get() },
+                    Some(ShapeSpec::Polygon(p)) => Shape::Polygon(p.get(&self.paths)),
+                    Some(line) => match line.line_shape() {
                         Some(Ok(s)) => s,
                         Some(Err(e)) => return Outcome::Err(e),
                         None => return Outcome::Err(Error::OutOfRange { what: "shape" }),
                     },
                 };
+                let offset = Vector2::new(
+                    Scalar::from_bits(i64::from(*x) << 28),
+                    Scalar::from_bits(i64::from(*y) << 28),
+                );
                 let def = arphysics::ShapeDef::new(shape)
-                    .offset(offset.get())
-                    .angle(angle.get())
-                    .density(density.get());
+                    .offset(offset)
+                    .angle(Scalar::from_bits(i64::from(*n) << 27));
                 match self.world.add_shape(body(h, self), def) {
                     Ok(i) => Outcome::Value(u64::from(i)),
                     Err(e) => Outcome::Err(e),
