@@ -211,6 +211,7 @@ fn world(bodies: usize, joints: usize) -> Result<World<'static>, Error> {
         post_step_callbacks: 64,
         events: 64,
         chain_vertices: 64,
+        shapes: 0,
     };
     let mut w = World::with_capacities(WorldDef::with_bounds(bounds), capacities)?;
     w.add_force_generator(GravityForceGenerator::new(Vector2::from_int(0, -10)))?;

@@ -198,6 +198,7 @@ fn shapes() -> Result<World<'static>, Error> {
         post_step_callbacks: 64,
         events: 64,
         chain_vertices: 0,
+        shapes: 0,
     };
     let mut w = crate::scene_world(bounds, caps)?;
     w.add_force_generator(GravityForceGenerator::new(Vector2::from_int(0, -10)))?;
