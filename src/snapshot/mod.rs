@@ -317,8 +317,9 @@ impl World<'_> {
 
     /// The longest snapshot this world can ever write: every body slot used, each
     /// body with its own properties, every generator slot holding a generator
-    /// with the most targets, the contact store full (with each arbiter's chain
-    /// link when the world has room for chains) and every joint slot used.
+    /// with the most targets, the contact store full (with each arbiter's
+    /// sub-key word when the world has room for chains or compound bodies),
+    /// every shape slot used and every joint slot used.
     /// It depends on the capacities only, so a game can allocate its rollback
     /// ring buffer once (`frames × max_snapshot_len()`); [`World::restore`]
     /// accepts the longer buffer.
@@ -376,7 +377,10 @@ impl World<'_> {
     /// [`Error::InvalidSnapshot`] for truncated, corrupted or foreign bytes;
     /// [`Error::SnapshotMismatch`] for a snapshot of another world (other settings
     /// or paths, more objects than this world's capacities, custom generators in
-    /// other slots). On error the world is unchanged.
+    /// other slots); [`Error::CapacityFull`] (`"shape"`) for a snapshot whose
+    /// compound bodies' shapes used more slots than this world's shape store
+    /// ([`Capacities::shapes`](crate::Capacities::shapes)) has. On error the
+    /// world is unchanged.
     pub fn restore(&mut self, buf: &[u8]) -> Result<(), Error> {
         // The snapshot holds no world tag: its handles become this world's.
         let layout = layout::Layout::parse(buf)?.for_world(self.bodies.tag());
