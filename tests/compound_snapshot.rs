@@ -483,3 +483,19 @@ fn diff_names_the_shape_slot_and_field_that_differ() {
     );
     assert_eq!(diff(&snap, &snap), Ok(None));
 }
+
+#[test]
+fn a_shape_s_material_is_in_the_bodies_part_of_the_state_hashes() {
+    // Two L's that differ only in the post's friction: the body properties
+    // (which mirror the bar) are equal, the shapes section is not.
+    let hashes = |mu: f64| {
+        let mut sc = scene(16);
+        let l = sc.w.add_body(BodyDef::polygon(sc.bar).position(v(0.0, 0.27))).expect("bar");
+        let post = ShapeDef::polygon(sc.post).offset(v(-0.75, 1.0)).friction(s(mu));
+        sc.w.add_shape(l, post).expect("room");
+        sc.w.state_hashes()
+    };
+    let (a, b) = (hashes(0.6), hashes(0.3));
+    assert_ne!(a.all, b.all);
+    assert_eq!(a.differing(&b).collect::<Vec<_>>(), ["bodies"]);
+}
