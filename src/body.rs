@@ -527,7 +527,6 @@ pub(crate) fn shape_radius(shape: Shape, paths: &ShapeStore<'_>) -> Scalar {
 /// The bounding radius of a body's shapes about its centre of mass (m): for
 /// a compound body the largest of each shape's offset length plus its own
 /// radius (rounded up by one unit of 2^-32 m, so it bounds the exact value).
-#[allow(dead_code)] // Read by the snapshot restore.
 pub(crate) fn body_radius(b: &Body, paths: &ShapeStore<'_>) -> Scalar {
     if !is_compound(b) {
         return shape_radius(b.shape, paths);

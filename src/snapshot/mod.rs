@@ -20,7 +20,15 @@
 //!    that share them);
 //! 4. the body allocator and one 64-byte record per body slot (generation,
 //!    free-list link or flags and properties index, position, rotation,
-//!    velocities);
+//!    velocities); then, when bit 31 of the properties count is set
+//!    ([`SHAPES`]: the world's shape store has used a slot), the shapes
+//!    section: the shape store's allocator, one [`SHAPE_RECORD`] per slot it
+//!    has used (generation, free-list link or used flag, owner body, next
+//!    shape, the shape as the properties record holds one, its frame on the
+//!    body, mass, inertia, material, filter, sensor flag), and the compound
+//!    bodies' list ([`COMPOUND_RECORD`]: each compound body's slot and first
+//!    shape slot, in body-slot order; a body's shape count is its list's
+//!    length, and one-shape bodies are in neither);
 //! 5. the generator allocator and the force generators;
 //! 6. the arbiters (58 bytes each: the pair, state and touching flag, steps since separation, and
 //!    per contact point its feature id and accumulated normal and friction
@@ -38,9 +46,10 @@
 //!    byte before it.
 //!
 //! Fixed-size records let `restore` check a buffer completely (free lists
-//! included) before it changes anything. A live body costs 64 bytes, plus 102 for
+//! included) before it changes anything. A live body costs 64 bytes, plus 118 for
 //! its properties unless it shares them with the body before it (a pyramid's
-//! boxes do); an arbiter 58 bytes.
+//! boxes do), plus, for a compound body, 8 and 126 per shape; an arbiter 58
+//! bytes.
 //!
 //! # Integrity, length and hashes
 //! [`World::restore`] reads the framing, then verifies the checksum over the
@@ -134,6 +143,32 @@ pub const ARBITER_LINKS: u32 = 1 << 31;
 const SHAPES_SHIFT: u32 = 26;
 /// Bytes of one joint record.
 pub const JOINT_RECORD: usize = 160;
+/// Bit 31 of the properties count: the body records are followed by the
+/// shapes section (the shape store's allocator state, one [`SHAPE_RECORD`]
+/// per slot it has used, then the compound bodies' list heads). Written only
+/// when the world's shape store has used a slot, so a world that never had a
+/// compound body encodes as before.
+pub const SHAPES: u32 = 1 << 31;
+/// Bytes of one slot of the shape store in the shapes section.
+///
+/// | offset | bytes | field |
+/// |---|---|---|
+/// | 0 | 4 | generation |
+/// | 4 | 4 | bit 31 set for a used slot (bits 0–30 then 0); else bits 0–29 the free-list successor |
+/// | 8 | 4 | the owner: the body's slot |
+/// | 12 | 4 | the next shape's slot of the body's list (`u32::MAX` after its last) |
+/// | 16 | 1 + 24 | the shape, as the properties record's first 25 bytes |
+/// | 41 | 16 + 16 | its frame on the body: offset (x, y) and rotation (cos, sin) |
+/// | 73 | 8 × 4 | mass, inertia, friction, restitution |
+/// | 105 | 8 + 8 + 4 | filter category bits, mask bits, group index (i32) |
+/// | 125 | 1 | sensor (0 or 1) |
+///
+/// Every byte after the first 8 of a free slot is zero.
+pub const SHAPE_RECORD: usize = 126;
+/// Bytes of one entry of the compound bodies' list that closes the shapes
+/// section: the body's slot and the slot of its first shape (u32 each), in
+/// body-slot order. A body's shape count is the length of its list.
+pub const COMPOUND_RECORD: usize = 8;
 
 /// The body-type byte of a properties record: bits 0–1 the type (0 static,
 /// 1 kinematic, 2 dynamic), bit 4 (0x10) the bullet flag, bit 5 (0x20) the
@@ -282,8 +317,9 @@ impl World<'_> {
 
     /// The longest snapshot this world can ever write: every body slot used, each
     /// body with its own properties, every generator slot holding a generator
-    /// with the most targets, the contact store full (with each arbiter's chain
-    /// link when the world has room for chains) and every joint slot used.
+    /// with the most targets, the contact store full (with each arbiter's
+    /// sub-key word when the world has room for chains or compound bodies),
+    /// every shape slot used and every joint slot used.
     /// It depends on the capacities only, so a game can allocate its rollback
     /// ring buffer once (`frames × max_snapshot_len()`); [`World::restore`]
     /// accepts the longer buffer.
@@ -341,7 +377,10 @@ impl World<'_> {
     /// [`Error::InvalidSnapshot`] for truncated, corrupted or foreign bytes;
     /// [`Error::SnapshotMismatch`] for a snapshot of another world (other settings
     /// or paths, more objects than this world's capacities, custom generators in
-    /// other slots). On error the world is unchanged.
+    /// other slots); [`Error::CapacityFull`] (`"shape"`) for a snapshot whose
+    /// compound bodies' shapes used more slots than this world's shape store
+    /// ([`Capacities::shapes`](crate::Capacities::shapes)) has. On error the
+    /// world is unchanged.
     pub fn restore(&mut self, buf: &[u8]) -> Result<(), Error> {
         // The snapshot holds no world tag: its handles become this world's.
         let layout = layout::Layout::parse(buf)?.for_world(self.bodies.tag());
