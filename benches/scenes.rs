@@ -153,6 +153,7 @@ fn main() -> Result<(), arphysics::Error> {
         post_step_callbacks: 64,
         events: 64,
         chain_vertices: 0,
+        shapes: 0,
     };
     println!(
         "memory: {per_body} bytes per body slot (body {}), {per_contact} per contact slot \

@@ -178,6 +178,7 @@ fn build<'a>() -> Result<World<'a>, arphysics::Error> {
         post_step_callbacks: 64,
         events: 64,
         chain_vertices: 0,
+        shapes: 0,
     };
     let mut w = World::with_capacities(WorldDef::with_bounds(bounds), capacities)?;
     w.add_force_generator(GravityForceGenerator::new(Vector2::from_int(0, -10)))?;

@@ -123,10 +123,27 @@ pub struct Arbiter {
     pub(crate) restitution: Scalar,
     /// Solve this step (derived: set by the lifecycle and `pre_solve`).
     pub(crate) solve: bool,
-    /// The bodies touched at the end of the last step (see
-    /// [`crate::events`]); for a sensor pair, unused (its `Contact` state
-    /// means overlapping). State: in the snapshot and the hash.
-    pub(crate) touching: bool,
+    /// Bit 0: the bodies touched at the end of the last step (see
+    /// [`crate::events`]; for a sensor pair unused, its `Contact` state
+    /// means overlapping). Bits 1–3 and 4–6: the index of the shape on body
+    /// A and on body B (0 for a body's first shape; part of the key, see
+    /// [`Arbiter::key`]). One byte, so the arbiter stays 256 bytes. State:
+    /// in the snapshot and the hash (the shape indices where any is not 0).
+    pub(crate) flags: u8,
+}
+
+/// [`Arbiter::flags`]: touching at the end of the last step.
+const TOUCHING_FLAG: u8 = 1;
+/// Bits of a shape index in [`Arbiter::flags`].
+const SHAPE_BITS: u32 = 3;
+/// The most shapes a body can have that arbiters can name: 8 (indices 0–7).
+pub const MAX_SHAPE_INDEX: u32 = (1 << SHAPE_BITS) - 1;
+
+/// An arbiter's sub-key (see [`Arbiter::key`]) from its chain link and the
+/// shape indices on the lower-slot and the higher-slot body.
+#[inline]
+pub(crate) const fn sub_key(link: u32, lo: u32, hi: u32) -> u32 {
+    (link << (2 * SHAPE_BITS)) | ((lo & MAX_SHAPE_INDEX) << SHAPE_BITS) | (hi & MAX_SHAPE_INDEX)
 }
 
 /// Bits of [`Arbiter::steps_and_link`] that count the steps since separation.
@@ -163,15 +180,58 @@ impl Arbiter {
         friction: ZERO,
         restitution: ZERO,
         solve: false,
-        touching: false,
+        flags: 0,
     };
 
     /// The canonical key of the arbiter: (lower body slot, higher body slot,
-    /// chain link; 0 for a pair without a chain).
+    /// sub-key). The sub-key is `link << 6 | lower body's shape << 3 |
+    /// higher body's shape`: the chain link (0 for a pair without a chain,
+    /// at most [`MAX_LINK`], 20 bits) then the two shape indices (at most
+    /// [`MAX_SHAPE_INDEX`], 3 bits each), 26 bits in all. A pair of
+    /// one-shape bodies has sub-key 0 and a chain pair its link shifted,
+    /// so their order is the order they had before bodies had several shapes.
     #[inline]
     pub(crate) fn key(&self) -> (u32, u32, u32) {
         let (a, b) = self.pair();
-        (a, b, self.link())
+        let (sa, sb) = (self.shape_a(), self.shape_b());
+        let (lo, hi) = if self.body_a.index() <= self.body_b.index() { (sa, sb) } else { (sb, sa) };
+        (a, b, sub_key(self.link(), lo, hi))
+    }
+
+    /// The index of the shape on body A this arbiter is for (0 for a body's
+    /// first shape).
+    #[inline]
+    #[must_use]
+    pub fn shape_a(&self) -> u32 {
+        u32::from(self.flags >> 1) & MAX_SHAPE_INDEX
+    }
+
+    /// The index of the shape on body B this arbiter is for.
+    #[inline]
+    #[must_use]
+    pub fn shape_b(&self) -> u32 {
+        u32::from(self.flags >> (1 + SHAPE_BITS)) & MAX_SHAPE_INDEX
+    }
+
+    /// The shape indices on bodies A and B as bytes (each at most 7).
+    #[inline]
+    pub(crate) fn shape_bytes(&self) -> (u8, u8) {
+        let mask = MAX_SHAPE_INDEX as u8;
+        ((self.flags >> 1) & mask, (self.flags >> (1 + SHAPE_BITS)) & mask)
+    }
+
+    /// Sets the shape indices on bodies A and B (each at most
+    /// [`MAX_SHAPE_INDEX`], masked).
+    #[inline]
+    pub(crate) fn set_shapes(&mut self, a: u32, b: u32) {
+        let (a, b) = ((a & MAX_SHAPE_INDEX) as u8, (b & MAX_SHAPE_INDEX) as u8);
+        self.flags = (self.flags & TOUCHING_FLAG) | (a << 1) | (b << (1 + SHAPE_BITS));
+    }
+
+    /// Sets whether the bodies touched at the end of the step.
+    #[inline]
+    pub(crate) fn set_touching(&mut self, on: bool) {
+        self.flags = (self.flags & !TOUCHING_FLAG) | u8::from(on);
     }
 
     /// The body pair: (lower body slot, higher body slot).
@@ -264,7 +324,7 @@ impl Arbiter {
     #[inline]
     #[must_use]
     pub fn is_touching(&self) -> bool {
-        self.touching
+        self.flags & TOUCHING_FLAG != 0
     }
 
     /// Unit normal from A to B.
@@ -421,10 +481,16 @@ impl<'a> ArbiterStore<'a> {
 
     /// Keeps the live arbiters for which `keep` returns true, in order.
     pub(crate) fn retain(&mut self, mut keep: impl FnMut(&Arbiter) -> bool) {
+        self.retain_mut(|arb| keep(arb));
+    }
+
+    /// As [`ArbiterStore::retain`], `keep` also changing the arbiters it keeps
+    /// (without changing their order).
+    pub(crate) fn retain_mut(&mut self, mut keep: impl FnMut(&mut Arbiter) -> bool) {
         let mut out = 0usize;
         for k in 0..self.count {
-            let Some(arb) = self.live.get(k).copied() else { break };
-            if !keep(&arb) {
+            let Some(mut arb) = self.live.get(k).copied() else { break };
+            if !keep(&mut arb) {
                 continue;
             }
             if let Some(slot) = self.live.get_mut(out) {
@@ -473,5 +539,28 @@ mod tests {
         a.set_steps_and_link(MAX_STEPS_SEPARATED, 7);
         assert_eq!(a.increase_step_count(), MAX_STEPS_SEPARATED, "saturates");
         assert_eq!(a.link(), 7);
+    }
+
+    #[test]
+    fn the_flags_byte_holds_touching_and_both_shape_indices() {
+        let mut a = Arbiter::EMPTY;
+        a.body_a = BodyHandle::from_parts(5, 0);
+        a.body_b = BodyHandle::from_parts(2, 0);
+        a.set_touching(true);
+        a.set_shapes(6, 1);
+        a.set_steps_and_link(9, MAX_LINK);
+        assert!(a.is_touching());
+        assert_eq!((a.shape_a(), a.shape_b()), (6, 1));
+        // Body B has the lower slot: its shape comes first in the sub-key.
+        assert_eq!(a.key(), (2, 5, (MAX_LINK << 6) | (1 << 3) | 6));
+        assert!(a.key().2 < (1 << 26));
+        a.set_touching(false);
+        assert_eq!((a.is_touching(), a.shape_a(), a.shape_b()), (false, 6, 1));
+        // A one-shape pair's key is its chain link shifted, order kept.
+        let mut b = Arbiter::EMPTY;
+        b.body_a = BodyHandle::from_parts(2, 0);
+        b.body_b = BodyHandle::from_parts(5, 0);
+        b.set_steps_and_link(0, 3);
+        assert_eq!(b.key(), (2, 5, 3 << 6));
     }
 }

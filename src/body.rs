@@ -10,6 +10,7 @@
 //! [`PolygonPath`]: crate::geometry::PolygonPath
 
 use crate::arena::{Arena, Handle};
+use crate::compound::{is_compound, shapes_of, ShapeSlot, NO_SHAPE};
 use crate::geometry::chain::ChainSlab;
 use crate::geometry::{Capsule, ChainHandle, MassData, PolygonPath, Segment};
 use crate::math::scalar::{Scalar, ZERO};
@@ -90,6 +91,8 @@ impl Shape {
 pub(crate) struct ShapeStore<'a> {
     pub(crate) paths: Arena<'a, PolygonPath>,
     pub(crate) chains: ChainSlab<'a>,
+    /// The shapes of compound bodies (see [`crate::compound`]).
+    pub(crate) slots: Arena<'a, ShapeSlot>,
 }
 
 impl<'a> core::ops::Deref for ShapeStore<'a> {
@@ -142,6 +145,11 @@ pub struct Body {
     pub(crate) sensor: bool,
     /// Bounding radius about the centre of mass (m), cached from the shape.
     pub(crate) radius: Scalar,
+    /// The first of its shapes in the world's shape store, or
+    /// [`NO_SHAPE`] for a body whose one shape is `shape`.
+    pub(crate) shapes: u32,
+    /// How many shapes it has (1 to [`MAX_SHAPES_PER_BODY`](crate::compound::MAX_SHAPES_PER_BODY)).
+    pub(crate) shape_count: u8,
     /// World bounding box, refreshed whenever the body moves (derived state).
     pub(crate) aabb: Rect,
     /// Velocity change from the force generators, spread over the sub-steps
@@ -177,6 +185,8 @@ impl Body {
             filter: CollisionFilter::DEFAULT,
             sensor: false,
             radius: ZERO,
+            shapes: NO_SHAPE,
+            shape_count: 1,
             aabb: Rect { min: Vector2::ZERO, max: Vector2::ZERO },
             force_dv: Vector2::ZERO,
             force_dw: ZERO,
@@ -237,11 +247,21 @@ impl Body {
         self.linear_velocity + Vector2::cross_sv(self.angular_velocity, r)
     }
 
-    /// The shape.
+    /// The shape: for a compound body, its first shape in that shape's own
+    /// frame (see [`World::shape`](crate::World::shape) for every shape and
+    /// its place on the body).
     #[inline]
     #[must_use]
     pub fn shape(&self) -> Shape {
         self.shape
+    }
+
+    /// How many shapes the body has (1 unless shapes were added with
+    /// [`World::add_shape`](crate::World::add_shape)).
+    #[inline]
+    #[must_use]
+    pub fn shape_count(&self) -> usize {
+        usize::from(self.shape_count)
     }
 
     /// Static, kinematic or dynamic.
@@ -492,8 +512,8 @@ impl Body {
     }
 }
 
-/// The bounding radius of `shape` about the body's position (m): 0 for a
-/// polygon whose path is gone.
+/// The bounding radius of `shape` about the origin of its frame (m): 0 for
+/// a polygon whose path is gone.
 pub(crate) fn shape_radius(shape: Shape, paths: &ShapeStore<'_>) -> Scalar {
     match shape {
         Shape::Circle { radius } => radius,
@@ -504,22 +524,50 @@ pub(crate) fn shape_radius(shape: Shape, paths: &ShapeStore<'_>) -> Scalar {
     }
 }
 
-/// The world bounding box of a body at its current transform.
+/// The bounding radius of a body's shapes about its centre of mass (m): for
+/// a compound body the largest of each shape's offset length plus its own
+/// radius (rounded up by one unit of 2^-32 m, so it bounds the exact value).
+pub(crate) fn body_radius(b: &Body, paths: &ShapeStore<'_>) -> Scalar {
+    if !is_compound(b) {
+        return shape_radius(b.shape, paths);
+    }
+    shapes_of(b, paths)
+        .map(|(_, s)| s.local.p.length() + shape_radius(s.shape, paths) + Scalar::DELTA)
+        .fold(ZERO, Scalar::max)
+}
+
+/// The world bounding box of a body at its current transform (for a
+/// compound body, the union of its shapes' boxes).
 pub(crate) fn compute_aabb(b: &Body, paths: &ShapeStore<'_>) -> Rect {
-    match b.shape {
-        Shape::Circle { radius } => Rect::from_center(b.position, Vector2::new(radius, radius)),
+    if !is_compound(b) {
+        return shape_aabb(b.shape, b.transform(), b.radius, paths);
+    }
+    let xf = b.transform();
+    let mut boxes = shapes_of(b, paths).map(|(_, s)| shape_aabb(s.shape, xf.compose(s.local), ZERO, paths));
+    let first = boxes.next().unwrap_or(Rect { min: b.position, max: b.position });
+    boxes.fold(first, Rect::union)
+}
+
+/// The world bounding box of `shape` in frame `xf` (a polygon whose path is
+/// gone: the box of `fallback_radius` about the frame's origin).
+pub(crate) fn shape_aabb(
+    shape: Shape,
+    xf: Transform,
+    fallback_radius: Scalar,
+    paths: &ShapeStore<'_>,
+) -> Rect {
+    match shape {
+        Shape::Circle { radius } => Rect::from_center(xf.p, Vector2::new(radius, radius)),
         Shape::Polygon(h) => match paths.get(h) {
             Some(p) => {
                 let r = p.rounding();
-                polygon_aabb(p.vertices(), b.transform()).expand(r)
+                polygon_aabb(p.vertices(), xf).expand(r)
             }
-            None => Rect::from_center(b.position, Vector2::new(b.radius, b.radius)),
+            None => Rect::from_center(xf.p, Vector2::new(fallback_radius, fallback_radius)),
         },
-        Shape::Capsule(c) => c.aabb(b.transform()),
-        Shape::Segment(s) => s.aabb(b.transform()),
-        Shape::Chain(h) => {
-            paths.chains.aabb(h, b.transform()).unwrap_or(Rect { min: b.position, max: b.position })
-        }
+        Shape::Capsule(c) => c.aabb(xf),
+        Shape::Segment(s) => s.aabb(xf),
+        Shape::Chain(h) => paths.chains.aabb(h, xf).unwrap_or(Rect { min: xf.p, max: xf.p }),
     }
 }
 

@@ -12,14 +12,18 @@ use managed::ManagedSlice;
 
 use crate::hook::Hook;
 
-use crate::arbiter::{mix_friction, mix_restitution, Arbiter, ArbiterState, ArbiterStore, ContactPoint};
+use crate::arbiter::{
+    mix_friction, mix_restitution, sub_key, Arbiter, ArbiterState, ArbiterStore, ContactPoint,
+    MAX_SHAPE_INDEX,
+};
 use crate::arena::Arena;
-use crate::body::{Body, BodyHandle, BodyType, Shape, ShapeStore};
+use crate::body::{shape_aabb, Body, BodyHandle, BodyType, Shape, ShapeStore};
 use crate::collide::{
     collide_capsule_circle, collide_capsules, collide_chain_segment_capsule, collide_chain_segment_circle,
     collide_chain_segment_polygon, collide_circles, collide_polygon_capsule, collide_polygon_circle,
     collide_polygons, collide_segment_capsule, collide_segment_circle, collide_segment_polygon, Manifold,
 };
+use crate::compound::{is_compound, shape_of, shapes_of, BodyShape, ShapeData, MAX_SHAPES_PER_BODY};
 use crate::constraint::{Joint, JointMarker};
 use crate::error::Error;
 use crate::events::{ContactBeginEvent, ContactHitEvent, Events, TOUCH_DISTANCE};
@@ -31,6 +35,7 @@ use crate::index::{
     AUTO_THRESHOLD,
 };
 use crate::limits::SPECULATIVE_DISTANCE;
+use crate::math::scalar::ZERO as ZERO_SCALAR;
 use crate::math::{Rect, Scalar, Transform, Vector2};
 use crate::solver::SolverBody;
 use crate::step::StepContext;
@@ -91,51 +96,95 @@ impl BroadPhase<'_> {
     }
 }
 
-/// True when the filters let two bodies collide: at least one dynamic body
-/// (both infinite-mass bodies ⇒ skip), no shared collision-group bit (the
-/// manual's rule, a veto), and Box2D's category/mask/group rule
-/// ([`CollisionFilter::accepts`](crate::CollisionFilter::accepts)); never
-/// two segments or chains.
-pub(crate) fn should_collide(a: &Body, b: &Body) -> bool {
+/// True when the filters let shape `sa` of body `a` and shape `sb` of body
+/// `b` collide: at least one dynamic body (both infinite-mass bodies ⇒
+/// skip), no shared collision-group bit between the bodies (the manual's
+/// rule, a veto), and Box2D's category/mask/group rule on the shapes'
+/// filters ([`CollisionFilter::accepts`](crate::CollisionFilter::accepts));
+/// never two segments or chains.
+#[inline(always)]
+pub(crate) fn contact_shapes<S: ShapeData>(a: &Body, sa: &S, b: &Body, sb: &S) -> bool {
     (a.body_type == BodyType::Dynamic || b.body_type == BodyType::Dynamic)
         && (a.collision_groups & b.collision_groups) == 0
-        && a.filter.accepts(&b.filter)
-        && !both_segments(a, b)
+        && sa.filters().accepts(sb.filters())
+        && !both_lines(sa.geometry(), sb.geometry())
 }
 
-/// True when both bodies are segments or chains (which never collide).
+/// True when both shapes are segments or chains (which never collide).
 #[inline]
-fn both_segments(a: &Body, b: &Body) -> bool {
+fn both_lines(a: &Shape, b: &Shape) -> bool {
     let line = |s: &Shape| matches!(s, Shape::Segment(_) | Shape::Chain(_));
-    line(&a.shape) && line(&b.shape)
+    line(a) && line(b)
 }
 
-/// True when two bodies make a pair the engine tracks: a contact pair
-/// ([`should_collide`]), or a sensor pair: exactly one sensor, at least one
-/// moving body (a static sensor detects kinematic bodies too), and both
+/// True when two one-shape bodies make a pair the engine tracks (see
+/// [`wants_shapes`]).
+pub(crate) fn wants_pair(a: &Body, b: &Body) -> bool {
+    wants_shapes(a, a, b, b)
+}
+
+/// True when shape `sa` of body `a` and shape `sb` of body `b` make a pair
+/// the engine tracks: a contact pair ([`contact_shapes`]), or a sensor pair: exactly one sensor shape, at least
+/// one moving body (a static sensor detects kinematic bodies too), and both
 /// filters passed as for a contact pair (the collision groups and the
 /// category/mask/group rule). Sensors never detect sensors, and segments
 /// never meet segments (neither has an inside to push out of). Sensors do
 /// not detect chains (a chain pair is one arbiter per link, not one overlap).
-pub(crate) fn wants_pair(a: &Body, b: &Body) -> bool {
-    if !a.sensor && !b.sensor {
-        return should_collide(a, b);
+/// Two shapes of one body never pair.
+#[inline(always)]
+pub(crate) fn wants_shapes<S: ShapeData>(a: &Body, sa: &S, b: &Body, sb: &S) -> bool {
+    let (sensor_a, sensor_b) = (sa.senses(), sb.senses());
+    if !sensor_a && !sensor_b {
+        return contact_shapes(a, sa, b, sb);
     }
-    if (a.sensor && b.sensor) || matches!(a.shape, Shape::Chain(_)) || matches!(b.shape, Shape::Chain(_)) {
+    if (sensor_a && sensor_b)
+        || matches!(sa.geometry(), Shape::Chain(_))
+        || matches!(sb.geometry(), Shape::Chain(_))
+    {
         return false;
     }
     let moving = a.body_type != BodyType::Static || b.body_type != BodyType::Static;
     moving
-        && !both_segments(a, b)
+        && !both_lines(sa.geometry(), sb.geometry())
         && (a.collision_groups & b.collision_groups) == 0
-        && a.filter.accepts(&b.filter)
+        && sa.filters().accepts(sb.filters())
 }
 
-/// True when one of the two bodies is a sensor: their arbiter tracks overlap
-/// and is never solved.
+/// True when two bodies have a pair of shapes the engine tracks
+/// ([`wants_shapes`]; for one-shape bodies [`wants_pair`]).
+fn wants_bodies(a: &Body, b: &Body, shapes: &ShapeStore<'_>) -> bool {
+    if !is_compound(a) && !is_compound(b) {
+        return wants_pair(a, b);
+    }
+    let (copy_a, copy_b) = (shape_copies(a, shapes), shape_copies(b, shapes));
+    copy_a.iter().any(|sa| copy_b.iter().any(|sb| wants_shapes(a, sa, b, sb)))
+}
+
+/// The shapes an arbiter is for, on its body A and body B.
 #[inline]
-fn sensor_pair(a: &Body, b: &Body) -> bool {
-    a.sensor || b.sensor
+fn arbiter_shapes(
+    arb: &Arbiter,
+    a: &Body,
+    b: &Body,
+    shapes: &ShapeStore<'_>,
+) -> Option<(BodyShape, BodyShape)> {
+    Some((shape_of(a, arb.shape_a(), shapes)?, shape_of(b, arb.shape_b(), shapes)?))
+}
+
+/// A body's shapes, copied (a compound pair's cold paths).
+fn shape_copies(b: &Body, shapes: &ShapeStore<'_>) -> heapless::Vec<BodyShape, MAX_SHAPES_PER_BODY> {
+    shapes_of(b, shapes).map(|(_, s)| s).collect()
+}
+
+/// True when an arbiter is a sensor pair: one of its shapes is a sensor; it
+/// tracks overlap and is never solved. `None` when a shape is gone.
+#[inline]
+fn sensor_arbiter(arb: &Arbiter, a: &Body, b: &Body, shapes: &ShapeStore<'_>) -> Option<(bool, bool)> {
+    if !is_compound(a) && !is_compound(b) {
+        return Some((a.sensor || b.sensor, a.sensor));
+    }
+    let (sa, sb) = arbiter_shapes(arb, a, b, shapes)?;
+    Some((sa.sensor || sb.sensor, sa.sensor))
 }
 
 /// What the broad phase found.
@@ -161,6 +210,7 @@ pub(crate) struct Candidates {
 pub(crate) fn broad_phase(
     ctx: &StepContext,
     bodies: &Arena<'_, Body>,
+    shapes: &ShapeStore<'_>,
     joints: &Arena<'_, Joint, JointMarker>,
     bp: &mut BroadPhase<'_>,
     arbiters: &ArbiterStore<'_>,
@@ -228,7 +278,7 @@ pub(crate) fn broad_phase(
     // manual's filter, not held apart by a joint.
     let accept = |sa: u32, sb: u32| {
         let (Some(a), Some(b)) = (bodies.get_at(sa), bodies.get_at(sb)) else { return false };
-        wants_pair(a, b) && held_pairs.binary_search(&(sa, sb)).is_err()
+        wants_bodies(a, b, shapes) && held_pairs.binary_search(&(sa, sb)).is_err()
     };
     let mut sink = PairSink::new(pairs, slots, ctx.strict_capacity, &accept);
     match index {
@@ -307,7 +357,7 @@ pub(crate) fn update_arbiters(
         let Some(arb) = next.get_mut(out) else {
             skipped = skipped.saturating_add(1);
             if let Some(p) = previous {
-                end_dropped(p, bodies, handlers, post_step, events);
+                end_dropped(p, bodies, paths, handlers, post_step, events);
             }
             continue;
         };
@@ -316,41 +366,100 @@ pub(crate) fn update_arbiters(
         let (Some((ha, ba)), Some((hb, bb))) = (live_at(bodies, key.0), live_at(bodies, key.1)) else {
             continue;
         };
-        pair_arbiter((ha, ba), (hb, bb), key.2, previous, arb);
-        let (a, b) = if arb.body_a == ha { (ba, bb) } else { (bb, ba) };
-        if sensor_pair(a, b) {
-            // Overlap is judged after the solve ([`touch_events`]); a sensor
-            // pair is kept while its boxes meet or it overlaps, never solved.
-            arb.solve = false;
-            arb.count = 0;
-            arb.touching = false;
-            if (candidate && wants_pair(a, b)) || arb.state == ArbiterState::Contact {
-                out = out.saturating_add(1);
-            }
-            continue;
-        }
-        // Contact points only within the speculative distance: the boxes
-        // (stretched along the motion for continuous collision) found the
-        // pair; the narrow phase runs only when the bodies' own boxes are
-        // that close.
-        let near = boxes_within(a.aabb, b.aabb, SPECULATIVE_DISTANCE);
-        let manifold = if candidate && near && wants_pair(a, b) {
-            collide_bodies(a, b, paths, arb.link(), SPECULATIVE_DISTANCE)
+        let link = key_link(key);
+        let keep = if !is_compound(ba) && !is_compound(bb) {
+            // One shape each: the bodies' own data (the common case).
+            let (x, y) = ((ha, ba, ba, 0), (hb, bb, bb, 0));
+            update_pair(
+                ctx,
+                (link, candidate, previous),
+                arb,
+                x,
+                y,
+                bodies,
+                paths,
+                handlers,
+                post_step,
+                events,
+            )
         } else {
-            Manifold::EMPTY
+            // The key's shapes: the lower slot's, then the higher's.
+            let (lo, hi) = ((key.2 >> 3) & MAX_SHAPE_INDEX, key.2 & MAX_SHAPE_INDEX);
+            let (Some(sx), Some(sy)) = (shape_of(ba, lo, paths), shape_of(bb, hi, paths)) else { continue };
+            let (x, y) = ((ha, ba, &sx, lo), (hb, bb, &sy, hi));
+            update_pair(
+                ctx,
+                (link, candidate, previous),
+                arb,
+                x,
+                y,
+                bodies,
+                paths,
+                handlers,
+                post_step,
+                events,
+            )
         };
-        arb.friction = mix_friction(a.friction, b.friction);
-        arb.restitution = mix_restitution(a.restitution, b.restitution);
-        let mut ctx_cb = CallbackContext { bodies, post_step: post_step.view() };
-        if lifecycle(arb, &manifold, handlers, &mut ctx_cb, ctx.arbiter_persistence, events) {
-            if arb.count > 0 && arb.state == ArbiterState::Contact && !arb.touching {
-                approach(arb, a, b);
-            }
+        if keep {
             out = out.saturating_add(1);
         }
     }
     arbiters.swap_in_next(out);
     skipped
+}
+
+/// One key's arbiter for this step, written into `arb`: shape `x.2` (index
+/// `x.3`) of body `x.1` and shape `y.2` of body `y.1`, lower slot first,
+/// for the chain link `key.0`, `key.1` whether the key is a candidate and
+/// `key.2` the arbiter it had (see [`update_arbiters`]). Returns whether to
+/// keep it.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn update_pair<S: ShapeData>(
+    ctx: &StepContext,
+    (link, candidate, previous): (u32, bool, Option<&Arbiter>),
+    arb: &mut Arbiter,
+    x: (BodyHandle, &Body, &S, u32),
+    y: (BodyHandle, &Body, &S, u32),
+    bodies: &Arena<'_, Body>,
+    paths: &ShapeStore<'_>,
+    handlers: &mut HandlerTable<'_>,
+    post_step: &mut PostStepQueue<'_>,
+    events: &mut Events<'_>,
+) -> bool {
+    let (ha, ba, sx) = (x.0, x.1, x.2);
+    let (bb, sy) = (y.1, y.2);
+    pair_arbiter(x, y, link, previous, arb);
+    let (a, b, sa, sb) = if arb.body_a == ha { (ba, bb, sx, sy) } else { (bb, ba, sy, sx) };
+    if sa.senses() || sb.senses() {
+        // Overlap is judged after the solve ([`touch_events`]); a sensor
+        // pair is kept while its boxes meet or it overlaps, never solved.
+        arb.solve = false;
+        arb.count = 0;
+        arb.set_touching(false);
+        return (candidate && wants_shapes(a, sa, b, sb)) || arb.state == ArbiterState::Contact;
+    }
+    // Contact points only within the speculative distance: the boxes
+    // (stretched along the motion for continuous collision) found the
+    // pair; the narrow phase runs only when the bodies' own boxes are
+    // that close (for compound bodies, the key stream checked the shapes').
+    let near = boxes_within(a.aabb, b.aabb, SPECULATIVE_DISTANCE);
+    let manifold = if candidate && near && wants_shapes(a, sa, b, sb) {
+        collide_body_shapes((a, sa), (b, sb), paths, arb.link(), SPECULATIVE_DISTANCE)
+    } else {
+        Manifold::EMPTY
+    };
+    let ((fa, ra), (fb, rb)) = (sa.material(), sb.material());
+    arb.friction = mix_friction(fa, fb);
+    arb.restitution = mix_restitution(ra, rb);
+    let mut ctx_cb = CallbackContext { bodies, post_step: post_step.view() };
+    if lifecycle(arb, &manifold, handlers, &mut ctx_cb, ctx.arbiter_persistence, events) {
+        if arb.count > 0 && arb.state == ArbiterState::Contact && !arb.is_touching() {
+            approach(arb, a, b);
+        }
+        return true;
+    }
+    false
 }
 
 /// The candidate keys in order: each candidate body pair's key with link 0,
@@ -365,14 +474,23 @@ struct CandidateKeys<'c, 'b, 'a> {
     i: usize,
     /// The key `peek` returns.
     current: Option<ArbiterKey>,
+    /// The current pair has that one key (two one-shape bodies, no chain).
+    single: bool,
 }
 
-/// An arbiter's key: (lower body slot, higher body slot, chain link).
+/// An arbiter's key: (lower body slot, higher body slot, sub-key; see
+/// [`Arbiter::key`]).
 pub(crate) type ArbiterKey = (u32, u32, u32);
+
+/// The chain link of a key (see [`Arbiter::key`]).
+#[inline]
+fn key_link(key: ArbiterKey) -> u32 {
+    key.2 >> 6
+}
 
 impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
     fn new(pairs: &'c [(u32, u32)], bodies: &'b Arena<'a, Body>, shapes: &'b ShapeStore<'a>) -> Self {
-        let mut k = Self { pairs, bodies, shapes, i: 0, current: None };
+        let mut k = Self { pairs, bodies, shapes, i: 0, current: None, single: false };
         k.current = k.key_at_or_after(None);
         k
     }
@@ -382,49 +500,122 @@ impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
     }
 
     fn advance(&mut self) {
-        let after = self.current.map(|(x, y, l)| (x, y, l.saturating_add(1)));
+        if self.single {
+            // The pair's only key: on to the next pair.
+            self.i = self.i.saturating_add(1);
+            self.current = self.key_at_or_after(None);
+            return;
+        }
+        let after = self.current.map(|k| (k.0, k.1, k.2.saturating_add(1)));
         self.current = self.key_at_or_after(after);
     }
 
-    /// The first key at or after `at` (a pair's next link), else the first
-    /// key of the following pairs.
-    fn key_at_or_after(&mut self, at: Option<ArbiterKey>) -> Option<ArbiterKey> {
+    /// The first key at `at` = (pair, first sub-key to look at) or after it
+    /// (the pair's next shape pair or link), else the first key of the
+    /// following pairs.
+    fn key_at_or_after(&mut self, at: Option<(u32, u32, u32)>) -> Option<ArbiterKey> {
         if let Some((x, y, from)) = at {
-            if let Some(link) = self.next_link(x, y, from) {
-                return Some((x, y, link));
+            if let Some(sub) = self.next_sub(x, y, from) {
+                return Some((x, y, sub));
             }
             self.i = self.i.saturating_add(1);
         }
         loop {
             let &(x, y) = self.pairs.get(self.i)?;
-            if self.chain_of(x, y).is_none() {
+            let (Some(bx), Some(by)) = (self.bodies.get_at(x), self.bodies.get_at(y)) else {
+                self.i = self.i.saturating_add(1);
+                continue;
+            };
+            self.single = single_key(bx) && single_key(by);
+            if self.single {
                 return Some((x, y, 0));
             }
-            if let Some(link) = self.next_link(x, y, 0) {
-                return Some((x, y, link));
+            if let Some(sub) = self.next_sub_expanded(bx, by, 0) {
+                return Some((x, y, sub));
             }
             self.i = self.i.saturating_add(1);
         }
     }
 
-    /// The chain body of a pair and the other body, if one is a chain.
-    fn chain_of(&self, x: u32, y: u32) -> Option<(&'b Body, &'b Body)> {
-        let (a, b) = (self.bodies.get_at(x)?, self.bodies.get_at(y)?);
-        match (a.shape, b.shape) {
-            (Shape::Chain(_), _) => Some((a, b)),
-            (_, Shape::Chain(_)) => Some((b, a)),
-            _ => None,
+    /// The first sub-key at or after `from` of the pair `(x, y)`: for two
+    /// one-shape bodies 0 (only from 0); for a pair with a chain, the links
+    /// near the other body, each with the other body's shapes the filters
+    /// let meet the chain; for compound bodies, the shape pairs (lower slot's
+    /// shape outer) the filters want whose boxes are within the speculative
+    /// distance.
+    #[inline]
+    fn next_sub(&self, x: u32, y: u32, from: u32) -> Option<u32> {
+        let (bx, by) = (self.bodies.get_at(x)?, self.bodies.get_at(y)?);
+        if single_key(bx) && single_key(by) {
+            return (from == 0).then_some(0);
         }
+        self.next_sub_expanded(bx, by, from)
     }
 
-    /// The first link at or after `from` of the chain pair `(x, y)` near the
-    /// other body; `None` past the last or for a pair without a chain past
-    /// link 0.
-    fn next_link(&self, x: u32, y: u32, from: u32) -> Option<u32> {
-        let (chain, other) = self.chain_of(x, y)?;
-        let Shape::Chain(h) = chain.shape else { return None };
-        let query = local_rect(other.aabb.expand(SPECULATIVE_DISTANCE), chain.transform());
-        self.shapes.chains.next_link(h, from, query)
+    /// [`CandidateKeys::next_sub`] for a pair with a chain or a compound body.
+    #[inline(never)]
+    fn next_sub_expanded(&self, bx: &Body, by: &Body, from: u32) -> Option<u32> {
+        let (link0, lo0, hi0) = (from >> (2 * 3), (from >> 3) & MAX_SHAPE_INDEX, from & MAX_SHAPE_INDEX);
+        let chain_low = matches!(bx.shape, Shape::Chain(_));
+        if chain_low || matches!(by.shape, Shape::Chain(_)) {
+            let (chain, other) = if chain_low { (bx, by) } else { (by, bx) };
+            let Shape::Chain(h) = chain.shape else { return None };
+            let chain_shape = BodyShape::of_body(chain);
+            // The other body's shape index sits in the lower or higher field.
+            let (mut link, mut first) = (link0, if chain_low { hi0 } else { lo0 });
+            let query = local_rect(other.aabb.expand(SPECULATIVE_DISTANCE), chain.transform());
+            loop {
+                let l = self.shapes.chains.next_link(h, link, query)?;
+                if l != link {
+                    first = 0;
+                }
+                for (i, s) in shapes_of(other, self.shapes).skip(first as usize) {
+                    if wants_shapes(chain, &chain_shape, other, &s) {
+                        return Some(if chain_low { sub_key(l, 0, i) } else { sub_key(l, i, 0) });
+                    }
+                }
+                link = l.checked_add(1)?;
+                first = 0;
+            }
+        }
+        if !is_compound(bx) && !is_compound(by) {
+            return (from == 0).then_some(0);
+        }
+        if link0 != 0 {
+            return None;
+        }
+        let (xx, xy) = (bx.transform(), by.transform());
+        for (i, sx) in shapes_of(bx, self.shapes).skip(lo0 as usize) {
+            let first = if i == lo0 { hi0 } else { 0 };
+            let mut box_x = None;
+            for (j, sy) in shapes_of(by, self.shapes).skip(first as usize) {
+                if !wants_shapes(bx, &sx, by, &sy) {
+                    continue;
+                }
+                let bxs = *box_x.get_or_insert_with(|| shape_box(bx, &sx, xx, self.shapes));
+                if boxes_within(bxs, shape_box(by, &sy, xy, self.shapes), SPECULATIVE_DISTANCE) {
+                    return Some(sub_key(0, i, j));
+                }
+            }
+        }
+        None
+    }
+}
+
+/// True when a body has one shape and is not a chain: a pair of two such
+/// bodies has one key.
+#[inline]
+fn single_key(b: &Body) -> bool {
+    !is_compound(b) && !matches!(b.shape, Shape::Chain(_))
+}
+
+/// The world box of shape `s` of body `b` at the body's transform `xf`.
+#[inline]
+fn shape_box(b: &Body, s: &BodyShape, xf: Transform, shapes: &ShapeStore<'_>) -> Rect {
+    if is_compound(b) {
+        shape_aabb(s.shape, xf.compose(s.local), ZERO_SCALAR, shapes)
+    } else {
+        b.aabb
     }
 }
 
@@ -433,6 +624,7 @@ impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
 fn end_dropped(
     arb: &Arbiter,
     bodies: &Arena<'_, Body>,
+    shapes: &ShapeStore<'_>,
     handlers: &mut HandlerTable<'_>,
     post_step: &mut PostStepQueue<'_>,
     events: &mut Events<'_>,
@@ -442,13 +634,13 @@ fn end_dropped(
     if !begun {
         return;
     }
-    if sensor_pair(a, b) {
-        let (sensor, visitor) = if a.sensor { (arb.body_a, arb.body_b) } else { (arb.body_b, arb.body_a) };
-        events.sensor(false, sensor, visitor);
+    let (sensor, a_is_sensor) = sensor_arbiter(arb, a, b, shapes).unwrap_or((false, false));
+    if sensor {
+        events.sensor(false, arb, a_is_sensor);
         return;
     }
-    if arb.touching {
-        events.end(arb.body_a, arb.body_b);
+    if arb.is_touching() {
+        events.end(arb);
     }
     let mut ended = *arb;
     ended.state = ArbiterState::Separated;
@@ -520,13 +712,12 @@ pub(crate) fn touch_events(
     let mut drop_any = false;
     for arb in arbiters.live_mut() {
         let (Some(a), Some(b)) = (bodies.get(arb.body_a), bodies.get(arb.body_b)) else { continue };
-        if sensor_pair(a, b) {
-            let overlap = wants_pair(a, b) && overlapping(a, b, paths, arb.link());
+        let Some((sensor, a_is_sensor)) = sensor_arbiter(arb, a, b, paths) else { continue };
+        if sensor {
+            let overlap = overlapping(arb, a, b, paths);
             let was = arb.state == ArbiterState::Contact;
             if overlap != was {
-                let (sensor, visitor) =
-                    if a.sensor { (arb.body_a, arb.body_b) } else { (arb.body_b, arb.body_a) };
-                events.sensor(overlap, sensor, visitor);
+                events.sensor(overlap, arb, a_is_sensor);
             }
             arb.state = if overlap { ArbiterState::Contact } else { ArbiterState::NoCollision };
             arb.reset_steps_separated();
@@ -540,8 +731,15 @@ pub(crate) fn touch_events(
                 _ => false,
             }
         };
-        if now && !arb.touching {
-            events.begin(ContactBeginEvent { body_a: arb.body_a, body_b: arb.body_b, normal: arb.normal });
+        if now && !arb.is_touching() {
+            let (shape_a, shape_b) = arb.shape_bytes();
+            events.begin(ContactBeginEvent {
+                body_a: arb.body_a,
+                body_b: arb.body_b,
+                normal: arb.normal,
+                shape_a,
+                shape_b,
+            });
             let (speed, point) = fastest_approach(arb);
             if speed > events.hit_threshold {
                 events.hit(ContactHitEvent {
@@ -550,12 +748,14 @@ pub(crate) fn touch_events(
                     point,
                     normal: arb.normal,
                     speed,
+                    shape_a,
+                    shape_b,
                 });
             }
-        } else if !now && arb.touching {
-            events.end(arb.body_a, arb.body_b);
+        } else if !now && arb.is_touching() {
+            events.end(arb);
         }
-        arb.touching = now;
+        arb.set_touching(now);
     }
     if drop_any {
         // Only sensor arbiters are in `NoCollision` after the lifecycle.
@@ -592,13 +792,17 @@ fn separation_now(arb: &Arbiter, a: (&Body, &SolverBody), b: (&Body, &SolverBody
     least
 }
 
-/// True when two bodies' shapes overlap now (a separation below zero; no
-/// margin). Frozen bodies overlap nothing.
-fn overlapping(a: &Body, b: &Body, paths: &ShapeStore<'_>, link: u32) -> bool {
+/// True when an arbiter's two shapes overlap now (a separation below zero;
+/// no margin). Frozen bodies overlap nothing.
+fn overlapping(arb: &Arbiter, a: &Body, b: &Body, paths: &ShapeStore<'_>) -> bool {
     if a.out_of_bounds || b.out_of_bounds || !a.aabb.overlaps(b.aabb) {
         return false;
     }
-    let m = collide_bodies(a, b, paths, link, Scalar::ZERO);
+    let Some((sa, sb)) = arbiter_shapes(arb, a, b, paths) else { return false };
+    if !wants_shapes(a, &sa, b, &sb) {
+        return false;
+    }
+    let m = collide_body_shapes((a, &sa), (b, &sb), paths, arb.link(), Scalar::ZERO);
     m.points().iter().any(|p| p.separation < Scalar::ZERO)
 }
 
@@ -607,6 +811,7 @@ fn overlapping(a: &Body, b: &Body, paths: &ShapeStore<'_>, link: u32) -> bool {
 pub(crate) fn end_arbiters_of(
     index: u32,
     bodies: &Arena<'_, Body>,
+    shapes: &ShapeStore<'_>,
     arbiters: &mut ArbiterStore<'_>,
     handlers: &mut HandlerTable<'_>,
     post_step: &mut PostStepQueue<'_>,
@@ -616,7 +821,7 @@ pub(crate) fn end_arbiters_of(
             return true;
         }
         let sensor = match (bodies.get(arb.body_a), bodies.get(arb.body_b)) {
-            (Some(a), Some(b)) => sensor_pair(a, b),
+            (Some(a), Some(b)) => sensor_arbiter(arb, a, b, shapes).is_some_and(|(s, _)| s),
             _ => false,
         };
         if !sensor && matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring) {
@@ -628,6 +833,47 @@ pub(crate) fn end_arbiters_of(
             }
         }
         false
+    });
+}
+
+/// Ends and drops the arbiters of shape `shape` of body slot `index` (the
+/// shape was removed; `removed_sensor` its sensor flag), calling `end` for those that had begun, and moves the
+/// body's later shapes' arbiters down one index. The arbiters stay in key
+/// order: the indices map in order.
+pub(crate) fn end_arbiters_of_shape(
+    index: u32,
+    (shape, removed_sensor): (u32, bool),
+    bodies: &Arena<'_, Body>,
+    shapes: &ShapeStore<'_>,
+    arbiters: &mut ArbiterStore<'_>,
+    handlers: &mut HandlerTable<'_>,
+    post_step: &mut PostStepQueue<'_>,
+) {
+    arbiters.retain_mut(|arb| {
+        let on_a = arb.body_a.index() == index;
+        let on_b = arb.body_b.index() == index;
+        if !on_a && !on_b {
+            return true;
+        }
+        let (sa, sb) = (arb.shape_a(), arb.shape_b());
+        if (on_a && sa == shape) || (on_b && sb == shape) {
+            // The other side's shape (the removed one is gone from the list).
+            let (other, other_shape) = if on_a { (arb.body_b, sb) } else { (arb.body_a, sa) };
+            let sensor = removed_sensor
+                || bodies.get(other).and_then(|o| shape_of(o, other_shape, shapes)).is_some_and(|s| s.sensor);
+            if !sensor && matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring) {
+                let mut ended = *arb;
+                ended.state = ArbiterState::Separated;
+                if let Some(h) = handlers.get(ended.level_a, ended.level_b) {
+                    let mut ctx = CallbackContext { bodies, post_step: post_step.view() };
+                    h.end(&ended, &mut ctx);
+                }
+            }
+            return false;
+        }
+        let down = |on: bool, s: u32| if on && s > shape { s - 1 } else { s };
+        arb.set_shapes(down(on_a, sa), down(on_b, sb));
+        true
     });
 }
 
@@ -656,9 +902,9 @@ fn lifecycle(
     }
     // Not touching (or its boxes no longer overlap).
     arb.count = 0;
-    if arb.touching {
-        arb.touching = false;
-        events.end(arb.body_a, arb.body_b);
+    if arb.is_touching() {
+        arb.set_touching(false);
+        events.end(arb);
     }
     if matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring) {
         arb.state = ArbiterState::Separated;
@@ -716,28 +962,32 @@ fn live_at<'b>(bodies: &'b Arena<'_, Body>, index: u32) -> Option<(BodyHandle, &
     Some((bodies.handle_at(index)?, bodies.get_at(index)?))
 }
 
-/// Writes the arbiter for the pair of live bodies `x` and `y` (lower slot
-/// first) into `out`: the previous one if it names these same bodies (a body
-/// removed and a new one in its slot has a new handle), else a new one with the
+/// Writes the arbiter for shape `x.3` of live body `x` and shape `y.3` of
+/// live body `y` (lower slot first) into `out`: the previous one if it names
+/// these same bodies (a body removed and a new one in its slot has a new
+/// handle; the key already matched the shapes), else a new one with the
 /// bodies in canonical order.
-fn pair_arbiter(
-    x: (BodyHandle, &Body),
-    y: (BodyHandle, &Body),
+fn pair_arbiter<S: ShapeData>(
+    x: (BodyHandle, &Body, &S, u32),
+    y: (BodyHandle, &Body, &S, u32),
     link: u32,
     previous: Option<&Arbiter>,
     out: &mut Arbiter,
 ) {
-    let ((ha, a), (hb, b)) = (x, y);
+    let ((ha, a, sa, ia), (hb, b, sb, ib)) = (x, y);
     if let Some(p) = previous {
         if (p.body_a == ha && p.body_b == hb) || (p.body_a == hb && p.body_b == ha) {
             *out = *p;
             return;
         }
     }
-    // The manual's order: the body with the smaller shape kind first (circles
+    // The manual's order: the shape of the smaller kind first (circles
     // before polygons); the key order breaks ties.
-    let (first, second, fa, fb) =
-        if b.shape.kind_rank() < a.shape.kind_rank() { (hb, ha, b, a) } else { (ha, hb, a, b) };
+    let ((first, fa, fi), (second, fb, si)) = if sb.geometry().kind_rank() < sa.geometry().kind_rank() {
+        ((hb, b, ib), (ha, a, ia))
+    } else {
+        ((ha, a, ia), (hb, b, ib))
+    };
     *out = Arbiter {
         body_a: first,
         body_b: second,
@@ -745,6 +995,7 @@ fn pair_arbiter(
         level_b: fb.collision_level,
         ..Arbiter::EMPTY
     };
+    out.set_shapes(fi, si);
     out.set_steps_and_link(0, link);
 }
 
@@ -773,14 +1024,56 @@ fn proxy(ctx: &StepContext, b: &Body) -> Proxy {
     Proxy { aabb, is_static: b.body_type == BodyType::Static }
 }
 
-/// The contact manifold of two bodies in canonical order (normal from A to B),
-/// with points reported up to `margin` apart.
+/// The contact manifold of shape `sa` of body `a` and shape `sb` of body
+/// `b`, in canonical order (normal from A to B), with points reported up to
+/// `margin` apart; anchors about the bodies' centres of mass.
+#[inline]
+fn collide_body_shapes<S: ShapeData>(
+    (a, sa): (&Body, &S),
+    (b, sb): (&Body, &S),
+    paths: &ShapeStore<'_>,
+    link: u32,
+    margin: Scalar,
+) -> Manifold {
+    if !S::PLACED {
+        return collide_bodies(a, b, paths, link, margin);
+    }
+    collide_compound((a, sa), (b, sb), paths, link, margin)
+}
+
+/// The contact manifold of two one-shape bodies in canonical order (normal
+/// from A to B), with points reported up to `margin` apart.
 #[inline]
 fn collide_bodies(a: &Body, b: &Body, paths: &ShapeStore<'_>, link: u32, margin: Scalar) -> Manifold {
     match (ShapeRef::of(&a.shape, paths, link), ShapeRef::of(&b.shape, paths, link)) {
         (Some(sa), Some(sb)) => collide_canonical(sa, a.transform(), sb, b.transform(), margin),
         _ => Manifold::EMPTY,
     }
+}
+
+/// [`collide_body_shapes`] when a body is compound.
+#[inline(never)]
+fn collide_compound<S: ShapeData>(
+    (a, sa): (&Body, &S),
+    (b, sb): (&Body, &S),
+    paths: &ShapeStore<'_>,
+    link: u32,
+    margin: Scalar,
+) -> Manifold {
+    let (Some(ra), Some(rb)) =
+        (ShapeRef::of(sa.geometry(), paths, link), ShapeRef::of(sb.geometry(), paths, link))
+    else {
+        return Manifold::EMPTY;
+    };
+    let (xa, xb) = (sa.place(a.transform()), sb.place(b.transform()));
+    let mut m = collide_canonical(ra, xa, rb, xb, margin);
+    // The pair functions give anchors about the shapes' frames.
+    let (da, db) = (xa.p - a.position, xb.p - b.position);
+    for p in m.points.iter_mut().take(m.count) {
+        p.anchor_a += da;
+        p.anchor_b += db;
+    }
+    m
 }
 
 /// A shape with its polygon path looked up: what the pair functions take.

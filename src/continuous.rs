@@ -49,7 +49,8 @@ use crate::arbiter::ArbiterStore;
 use crate::arena::Arena;
 use crate::body::{compute_aabb, Body, BodyType, Shape, ShapeStore};
 use crate::collide::{time_of_impact, Swept};
-use crate::collision::{should_collide, BroadPhase};
+use crate::collision::{contact_shapes, BroadPhase};
+use crate::compound::{is_compound, shapes_of};
 use crate::geometry::chain::local_rect;
 use crate::geometry::PolygonPath;
 use crate::limits::SPECULATIVE_DISTANCE;
@@ -84,9 +85,22 @@ pub(crate) const FAST: u8 = 1;
 /// whose box meets its path.
 const SCAN: u8 = 2;
 
-/// The least distance from a body's centre to its surface (m).
+/// The least distance from a body's centre to its surface (m); for a
+/// compound body, the least of its solid shapes' (each about its own centre).
 fn core_extent(b: &Body, paths: &ShapeStore<'_>) -> Scalar {
-    match b.shape {
+    if !is_compound(b) {
+        return shape_core_extent(b.shape, paths);
+    }
+    shapes_of(b, paths)
+        .filter(|(_, s)| !s.sensor)
+        .map(|(_, s)| shape_core_extent(s.shape, paths))
+        .reduce(Scalar::min)
+        .unwrap_or(ZERO)
+}
+
+/// The least distance from a shape's centre to its surface (m).
+fn shape_core_extent(shape: Shape, paths: &ShapeStore<'_>) -> Scalar {
+    match shape {
         Shape::Circle { radius } => radius,
         Shape::Polygon(h) => paths.get(h).map_or(ZERO, PolygonPath::core_extent),
         // The thickness a capsule keeps whatever its length; a segment has none.
@@ -95,9 +109,9 @@ fn core_extent(b: &Body, paths: &ShapeStore<'_>) -> Scalar {
     }
 }
 
-/// The swept shape of a body.
-fn swept<'p>(b: &'p Body, paths: &'p ShapeStore<'_>) -> Option<Swept<'p>> {
-    match &b.shape {
+/// The swept form of a shape.
+fn swept<'p>(shape: &'p Shape, paths: &'p ShapeStore<'_>) -> Option<Swept<'p>> {
+    match shape {
         Shape::Circle { radius } => Some(Swept::Circle(*radius)),
         Shape::Polygon(h) => paths.get(*h).map(Swept::Polygon),
         Shape::Capsule(c) => Some(Swept::Capsule(c)),
@@ -214,8 +228,9 @@ impl Pass<'_, '_> {
     fn pair(&self, solver: &[SolverBody], f: u32, o: u32, filter: bool, sweeps: &mut u32) -> Option<Scalar> {
         let (sf, so) = (solver.get(f as usize)?, solver.get(o as usize)?);
         let (bf, bo) = (self.bodies.get_at(f)?, self.bodies.get_at(o)?);
-        // Sensors never stop anything, and are never stopped.
-        if sf.ccd & FAST == 0 || bf.bullet != self.bullets || bo.out_of_bounds || bf.sensor || bo.sensor {
+        // Sensors never stop anything, and are never stopped (for compound
+        // bodies, shape by shape below).
+        if sf.ccd & FAST == 0 || bf.bullet != self.bullets || bo.out_of_bounds {
             return None;
         }
         // The target's pose to sweep against: static and kinematic bodies move
@@ -229,54 +244,86 @@ impl Pass<'_, '_> {
             BodyType::Dynamic => return None,
         };
         let key = (f.min(o), f.max(o));
-        if filter && (!should_collide(bf, bo) || self.held.binary_search(&key).is_ok()) {
+        if filter && self.held.binary_search(&key).is_ok() {
             return None;
         }
         // A pair the game chose not to solve this step is not stopped either.
-        // (For a chain, when none of its links' arbiters is solved.)
+        // (For a chain or compound bodies, when none of the pair's arbiters is solved.)
         let live = self.arbiters.live();
         let first = live.partition_point(|a| a.pair() < key);
         let mut pair = live.get(first..).unwrap_or(&[]).iter().take_while(|a| a.pair() == key).peekable();
         if pair.peek().is_some() && pair.all(|a| !a.solve) {
             return None;
         }
-        let shape_f = swept(bf, self.paths)?;
         let xf = Transform::new(sf.p0, sf.q0);
         let d = (bf.position - sf.p0) - motion_o;
         let reach_o = turn_o.abs() * bo.radius;
         let gap = TOI_GAP + reach_o + sf.angle.abs() * bf.radius;
-        let sweep = |shape_o: Swept<'_>, sweeps: &mut u32| {
+        // One shape of the fast body (at `xs`, core radius `core`) against one
+        // of the target's (at `xt`).
+        let sweep = |shape_o: Swept<'_>,
+                     xt: Transform,
+                     shape_f: Swept<'_>,
+                     xs: Transform,
+                     core: Scalar,
+                     sweeps: &mut u32| {
             *sweeps = sweeps.saturating_add(1);
-            let t = time_of_impact(shape_o, xo, shape_f, xf, d, gap)?;
+            let t = time_of_impact(shape_o, xt, shape_f, xs, d, gap)?;
             if t > ZERO {
                 return Some(t);
             }
             // Within reach already: sweep the core, which does not turn.
-            let core = Swept::Circle(core_extent(bf, self.paths) * CORE);
+            let core = Swept::Circle(core);
             *sweeps = sweeps.saturating_add(1);
-            time_of_impact(shape_o, xo, core, xf, d, TOI_GAP + reach_o).filter(|&t| t > ZERO)
+            time_of_impact(shape_o, xt, core, xs, d, TOI_GAP + reach_o).filter(|&t| t > ZERO)
         };
-        let Shape::Chain(h) = bo.shape else { return sweep(swept(bo, self.paths)?, sweeps) };
-        // A chain: each link near the path whose front the body starts in
-        // front of (links are one-sided), the earliest impact.
-        let r = Vector2::new(bf.radius, bf.radius);
-        let path = Rect::from_center(sf.p0, r).union(Rect::from_center(bf.position, r)).expand(gap);
-        let query = local_rect(path, xo);
-        let start = xo.apply_inv(sf.p0);
-        let (mut link, mut best) = (0u32, None::<Scalar>);
-        while let Some(k) = self.paths.chains.next_link(h, link, query) {
-            link = k.saturating_add(1);
-            let Some(l) = self.paths.chains.link(h, k) else { break };
-            let (p1, p2) = (l.segment().point1(), l.segment().point2());
-            if (p2 - p1).cross(start - p1) > ZERO {
+        let (cf, co) = (is_compound(bf), is_compound(bo));
+        // The filters, per shape pair (the candidate pairs of one-shape
+        // bodies have passed them).
+        let check = filter || cf || co;
+        let mut best = None::<Scalar>;
+        let mut earliest = |t: Option<Scalar>| {
+            if let Some(t) = t {
+                best = Some(best.map_or(t, |b: Scalar| b.min(t)));
+            }
+        };
+        for (_, sh_f) in shapes_of(bf, self.paths) {
+            if sh_f.sensor {
                 continue;
             }
-            let seg = l.segment();
-            if let Some(t) = sweep(Swept::Segment(&seg), sweeps) {
-                best = Some(best.map_or(t, |b| b.min(t)));
-            }
-            if k == u32::MAX {
-                break;
+            let Some(shape_f) = swept(&sh_f.shape, self.paths) else { continue };
+            let xs = sh_f.world(xf, cf);
+            let core = shape_core_extent(sh_f.shape, self.paths) * CORE;
+            for (_, sh_o) in shapes_of(bo, self.paths) {
+                if sh_o.sensor || (check && !contact_shapes(bf, &sh_f, bo, &sh_o)) {
+                    continue;
+                }
+                let xt = sh_o.world(xo, co);
+                let Shape::Chain(h) = sh_o.shape else {
+                    let Some(shape_o) = swept(&sh_o.shape, self.paths) else { continue };
+                    earliest(sweep(shape_o, xt, shape_f, xs, core, sweeps));
+                    continue;
+                };
+                // A chain: each link near the path whose front the body starts in
+                // front of (links are one-sided), the earliest impact.
+                let r = Vector2::new(bf.radius, bf.radius);
+                let path = Rect::from_center(sf.p0, r).union(Rect::from_center(bf.position, r)).expand(gap);
+                let query = local_rect(path, xt);
+                let start = xt.apply_inv(xs.p);
+                let mut link = 0u32;
+                while let Some(k) = self.paths.chains.next_link(h, link, query) {
+                    link = k.saturating_add(1);
+                    let Some(l) = self.paths.chains.link(h, k) else { break };
+                    let (p1, p2) = (l.segment().point1(), l.segment().point2());
+                    if (p2 - p1).cross(start - p1) > ZERO {
+                        continue;
+                    }
+                    let seg = l.segment();
+                    earliest(sweep(Swept::Segment(&seg), xt, shape_f, xs, core, sweeps));
+                    if k == u32::MAX {
+                        break;
+                    }
+                }
             }
         }
         best

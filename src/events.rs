@@ -60,6 +60,7 @@
 
 use managed::ManagedSlice;
 
+use crate::arbiter::Arbiter;
 use crate::body::BodyHandle;
 use crate::constraint::JointHandle;
 use crate::math::{Scalar, Vector2};
@@ -85,6 +86,11 @@ pub struct ContactBeginEvent {
     pub body_b: BodyHandle,
     /// The contact normal, from A to B.
     pub normal: Vector2,
+    /// The index of the touching shape on body A (0: the body's first shape;
+    /// see [`Arbiter::shape_a`](crate::Arbiter::shape_a)).
+    pub shape_a: u8,
+    /// The index of the touching shape on body B.
+    pub shape_b: u8,
 }
 
 /// Two bodies stopped touching this step.
@@ -94,6 +100,10 @@ pub struct ContactEndEvent {
     pub body_a: BodyHandle,
     /// The arbiter's second body.
     pub body_b: BodyHandle,
+    /// The index of the shape on body A (0: the body's first shape).
+    pub shape_a: u8,
+    /// The index of the shape on body B.
+    pub shape_b: u8,
 }
 
 /// Two bodies started touching this step, approaching faster than the
@@ -110,6 +120,10 @@ pub struct ContactHitEvent {
     pub normal: Vector2,
     /// The approach speed along the normal before the step's solve (m/s, > 0).
     pub speed: Scalar,
+    /// The index of the touching shape on body A (0: the body's first shape).
+    pub shape_a: u8,
+    /// The index of the touching shape on body B.
+    pub shape_b: u8,
 }
 
 /// A body started or stopped overlapping a sensor this step.
@@ -119,6 +133,10 @@ pub struct SensorEvent {
     pub sensor: BodyHandle,
     /// The body that entered or left it.
     pub visitor: BodyHandle,
+    /// The index of the sensor's shape (0: the body's first shape).
+    pub sensor_shape: u8,
+    /// The index of the visitor's shape.
+    pub visitor_shape: u8,
 }
 
 /// A breakable joint broke this step and was removed.
@@ -258,8 +276,15 @@ impl<'a> Events<'a> {
         self.count(kept);
     }
 
-    pub(crate) fn end(&mut self, body_a: BodyHandle, body_b: BodyHandle) {
-        let kept = self.contact_end.push(ContactEndEvent { body_a, body_b });
+    /// The end event of arbiter `arb`.
+    pub(crate) fn end(&mut self, arb: &Arbiter) {
+        let (shape_a, shape_b) = arb.shape_bytes();
+        let kept = self.contact_end.push(ContactEndEvent {
+            body_a: arb.body_a,
+            body_b: arb.body_b,
+            shape_a,
+            shape_b,
+        });
         self.count(kept);
     }
 
@@ -268,9 +293,17 @@ impl<'a> Events<'a> {
         self.count(kept);
     }
 
-    pub(crate) fn sensor(&mut self, begin: bool, sensor: BodyHandle, visitor: BodyHandle) {
+    /// A sensor event of arbiter `arb`, whose sensor is body A when
+    /// `sensor_is_a`.
+    pub(crate) fn sensor(&mut self, begin: bool, arb: &Arbiter, sensor_is_a: bool) {
+        let (a, b) = arb.shape_bytes();
+        let e = if sensor_is_a {
+            SensorEvent { sensor: arb.body_a, visitor: arb.body_b, sensor_shape: a, visitor_shape: b }
+        } else {
+            SensorEvent { sensor: arb.body_b, visitor: arb.body_a, sensor_shape: b, visitor_shape: a }
+        };
         let list = if begin { &mut self.sensor_begin } else { &mut self.sensor_end };
-        let kept = list.push(SensorEvent { sensor, visitor });
+        let kept = list.push(e);
         self.count(kept);
     }
 
@@ -282,10 +315,10 @@ impl<'a> Events<'a> {
     /// Puts the pair lists in pair-key order (ends found during the narrow
     /// phase and after the solve are appended in two runs).
     pub(crate) fn sort(&mut self) {
-        self.contact_begin.sort_by_key(|e| pair_key(e.body_a, e.body_b));
-        self.contact_end.sort_by_key(|e| pair_key(e.body_a, e.body_b));
-        self.contact_hit.sort_by_key(|e| pair_key(e.body_a, e.body_b));
-        self.sensor_begin.sort_by_key(|e| pair_key(e.sensor, e.visitor));
-        self.sensor_end.sort_by_key(|e| pair_key(e.sensor, e.visitor));
+        self.contact_begin.sort_by_key(|e| (pair_key(e.body_a, e.body_b), e.shape_a, e.shape_b));
+        self.contact_end.sort_by_key(|e| (pair_key(e.body_a, e.body_b), e.shape_a, e.shape_b));
+        self.contact_hit.sort_by_key(|e| (pair_key(e.body_a, e.body_b), e.shape_a, e.shape_b));
+        self.sensor_begin.sort_by_key(|e| (pair_key(e.sensor, e.visitor), e.sensor_shape, e.visitor_shape));
+        self.sensor_end.sort_by_key(|e| (pair_key(e.sensor, e.visitor), e.sensor_shape, e.visitor_shape));
     }
 }

@@ -200,6 +200,7 @@ pub mod body;
 mod body_def;
 pub mod collide;
 pub mod collision;
+pub mod compound;
 pub mod constraint;
 pub mod continuous;
 pub mod error;
@@ -221,6 +222,7 @@ pub use arbiter::{Arbiter, ArbiterState, ContactPoint};
 pub use arena::{Handle, Slot};
 pub use body::{Body, BodyDef, BodyHandle, BodyType, CollisionFilter, MassSpec, PathHandle, Shape};
 pub use collision::Index;
+pub use compound::{BodyShape, ShapeDef, MAX_SHAPES_PER_BODY};
 pub use constraint::{
     Constraint, ConstraintHandle, Joint, JointDef, JointHandle, JointKind, MaxTorque, Motor,
 };

@@ -7,9 +7,10 @@
 //! by slot). Each body's bounding box is tested before its shape. Queries see
 //! the world as it was after the last step, and frozen (out-of-bounds) bodies too.
 
-use crate::body::{Body, BodyHandle, Shape};
+use crate::body::{shape_aabb, Body, BodyHandle, CollisionFilter, Shape};
 use crate::collide::{time_of_impact, Swept};
 use crate::collision::{collide_shapes, ShapeRef};
+use crate::compound::{is_compound, shapes_of};
 use crate::error::Error;
 use crate::geometry::chain::local_rect;
 use crate::geometry::ray::{
@@ -111,13 +112,20 @@ impl QueryFilter {
         self
     }
 
+    /// The body-level tests: groups, static, the excluded body; and for a
+    /// one-shape body its shape's.
     fn accepts(&self, h: BodyHandle, b: &Body) -> bool {
         (self.groups & b.collision_groups) == 0
             && !(self.skip_static && b.is_static())
-            && !(self.skip_sensors && b.sensor)
-            && (self.mask_bits & b.filter.category_bits) != 0
-            && (self.category_bits & b.filter.mask_bits) != 0
             && self.exclude != Some(h)
+            && (is_compound(b) || self.accepts_shape(b.sensor, &b.filter))
+    }
+
+    /// The shape-level tests: sensors, category and mask.
+    fn accepts_shape(&self, sensor: bool, filter: &CollisionFilter) -> bool {
+        !(self.skip_sensors && sensor)
+            && (self.mask_bits & filter.category_bits) != 0
+            && (self.category_bits & filter.mask_bits) != 0
     }
 }
 
@@ -179,12 +187,47 @@ impl<'a> World<'a> {
         Ok((dir, length))
     }
 
-    fn ray_body(&self, b: &Body, from: Vector2, dir: Vector2, length: Scalar) -> Option<(Scalar, Vector2)> {
-        let hit = match b.shape {
-            Shape::Circle { radius } => ray_circle(from, dir, length, b.position, radius),
-            Shape::Polygon(h) => ray_polygon(from, dir, length, self.paths.get(h)?, b.transform()),
-            Shape::Capsule(c) => ray_capsule(from, dir, length, &c, b.transform()),
-            Shape::Segment(sg) => ray_segment(from, dir, length, &sg, b.transform()),
+    /// The shapes of body `b` the filter accepts, each in its world frame.
+    fn shapes_in_world<'s>(
+        &'s self,
+        b: &'s Body,
+        filter: &'s QueryFilter,
+    ) -> impl Iterator<Item = (Shape, Transform)> + 's {
+        let (xf, compound) = (b.transform(), is_compound(b));
+        shapes_of(b, &self.paths)
+            .filter(move |(_, s)| !compound || filter.accepts_shape(s.sensor, &s.filter))
+            .map(move |(_, s)| (s.shape, s.world(xf, compound)))
+    }
+
+    /// The nearest entry of the ray into one of body `b`'s shapes the filter
+    /// accepts: distance and normal.
+    fn ray_body(
+        &self,
+        b: &Body,
+        filter: &QueryFilter,
+        from: Vector2,
+        dir: Vector2,
+        length: Scalar,
+    ) -> Option<(Scalar, Vector2)> {
+        self.shapes_in_world(b, filter)
+            .filter_map(|(shape, xf)| self.ray_shape(b, shape, xf, from, dir, length))
+            .reduce(|best, hit| if hit.0 < best.0 { hit } else { best })
+    }
+
+    fn ray_shape(
+        &self,
+        b: &Body,
+        shape: Shape,
+        xf: Transform,
+        from: Vector2,
+        dir: Vector2,
+        length: Scalar,
+    ) -> Option<(Scalar, Vector2)> {
+        let hit = match shape {
+            Shape::Circle { radius } => ray_circle(from, dir, length, xf.p, radius),
+            Shape::Polygon(h) => ray_polygon(from, dir, length, self.paths.get(h)?, xf),
+            Shape::Capsule(c) => ray_capsule(from, dir, length, &c, xf),
+            Shape::Segment(sg) => ray_segment(from, dir, length, &sg, xf),
             Shape::Chain(h) => {
                 // The nearest link the ray enters from its front side.
                 let span = Rect::from_corners(from, from + dir * length);
@@ -242,7 +285,7 @@ impl<'a> World<'a> {
             if !filter.accepts(h, b) || !b.aabb.overlaps(span) {
                 return None;
             }
-            let (t, normal) = self.ray_body(b, from, dir, length)?;
+            let (t, normal) = self.ray_body(b, &filter, from, dir, length)?;
             Some(RayHit { body: h, point: from + dir * t, normal, fraction: t.div_or_zero(length) })
         }))
     }
@@ -300,18 +343,16 @@ impl<'a> World<'a> {
         let found = self.bodies.iter().filter(|(h, b)| {
             filter.accepts(*h, b)
                 && b.aabb.contains(point)
-                && match b.shape {
+                && self.shapes_in_world(b, &filter).any(|(shape, xf)| match shape {
                     Shape::Circle { radius } => {
-                        let d = point - b.position;
+                        let d = point - xf.p;
                         d.length_squared() <= radius * radius
                     }
-                    Shape::Polygon(h) => {
-                        self.paths.get(h).is_some_and(|p| polygon_contains(p, b.transform(), point))
-                    }
-                    Shape::Capsule(c) => capsule_contains(&c, b.transform(), point),
+                    Shape::Polygon(h) => self.paths.get(h).is_some_and(|p| polygon_contains(p, xf, point)),
+                    Shape::Capsule(c) => capsule_contains(&c, xf, point),
                     // No area: a segment or a chain contains no point.
                     Shape::Segment(_) | Shape::Chain(_) => false,
-                }
+                })
         });
         collect(found.map(|(h, _)| h), out)
     }
@@ -330,7 +371,14 @@ impl<'a> World<'a> {
         if area.min.x > area.max.x || area.min.y > area.max.y {
             return Err(Error::OutOfRange { what: "query box" });
         }
-        let found = self.bodies.iter().filter(|(h, b)| filter.accepts(*h, b) && b.aabb.overlaps(area));
+        let found = self.bodies.iter().filter(|(h, b)| {
+            filter.accepts(*h, b)
+                && b.aabb.overlaps(area)
+                && (!is_compound(b)
+                    || self
+                        .shapes_in_world(b, &filter)
+                        .any(|(shape, xf)| shape_aabb(shape, xf, ZERO, &self.paths).overlaps(area)))
+        });
         Ok(collect(found.map(|(h, _)| h), out))
     }
 
@@ -357,14 +405,16 @@ impl<'a> World<'a> {
             if !filter.accepts(*h, b) || !b.aabb.overlaps(area) {
                 return false;
             }
-            let touches = |body_shape: ShapeRef<'_>| {
-                let m = collide_shapes(shape.as_ref(), xf, body_shape, b.transform(), ZERO);
-                m.points().iter().any(|p| p.separation <= ZERO)
-            };
-            if let Shape::Chain(ch) = b.shape {
-                return self.each_link(b, ch, area, |l| touches(ShapeRef::ChainLink(l)));
-            }
-            ShapeRef::of(&b.shape, &self.paths, 0).is_some_and(touches)
+            self.shapes_in_world(b, &filter).any(|(body_shape, bx)| {
+                let touches = |body_shape: ShapeRef<'_>| {
+                    let m = collide_shapes(shape.as_ref(), xf, body_shape, bx, ZERO);
+                    m.points().iter().any(|p| p.separation <= ZERO)
+                };
+                if let Shape::Chain(ch) = body_shape {
+                    return self.each_link(b, ch, area, |l| touches(ShapeRef::ChainLink(l)));
+                }
+                ShapeRef::of(&body_shape, &self.paths, 0).is_some_and(touches)
+            })
         });
         Ok(collect(found.map(|(h, _)| h), out))
     }
@@ -413,35 +463,36 @@ impl World<'_> {
             if !filter.accepts(h, b) || !b.aabb.overlaps(swept_box) {
                 continue;
             }
-            let bx = b.transform();
-            let try_shape = |body_shape: ShapeRef<'_>, best: &mut Option<RayHit>| {
-                let Some(still) = swept_of(&body_shape) else { return };
-                let Some(t) = time_of_impact(still, bx, moving, xf, translation, ZERO) else { return };
-                if best.is_some_and(|hit| hit.fraction <= t) {
-                    return;
-                }
-                let at = Transform::new(xf.p + translation * t, xf.q);
-                let m = collide_shapes(body_shape, bx, cast, at, CAST_MARGIN);
-                let (normal, point) = match m.points().first() {
-                    Some(p) => (m.normal, p.point),
-                    None => (-translation.try_normalize().unwrap_or(Vector2::ZERO), at.p),
-                };
-                *best = Some(RayHit { body: h, point, normal, fraction: t });
-            };
-            if let Shape::Chain(ch) = b.shape {
-                // Links the shape starts in front of (they are one-sided).
-                let start = bx.apply_inv(xf.p);
-                self.each_link(b, ch, swept_box, |l| {
-                    let sg = l.segment();
-                    if (sg.point2() - sg.point1()).cross(start - sg.point1()) <= ZERO {
-                        try_shape(ShapeRef::ChainLink(l), &mut best);
+            for (body_shape, bx) in self.shapes_in_world(b, &filter) {
+                let try_shape = |body_shape: ShapeRef<'_>, best: &mut Option<RayHit>| {
+                    let Some(still) = swept_of(&body_shape) else { return };
+                    let Some(t) = time_of_impact(still, bx, moving, xf, translation, ZERO) else { return };
+                    if best.is_some_and(|hit| hit.fraction <= t) {
+                        return;
                     }
-                    false
-                });
-                continue;
+                    let at = Transform::new(xf.p + translation * t, xf.q);
+                    let m = collide_shapes(body_shape, bx, cast, at, CAST_MARGIN);
+                    let (normal, point) = match m.points().first() {
+                        Some(p) => (m.normal, p.point),
+                        None => (-translation.try_normalize().unwrap_or(Vector2::ZERO), at.p),
+                    };
+                    *best = Some(RayHit { body: h, point, normal, fraction: t });
+                };
+                if let Shape::Chain(ch) = body_shape {
+                    // Links the shape starts in front of (they are one-sided).
+                    let start = bx.apply_inv(xf.p);
+                    self.each_link(b, ch, swept_box, |l| {
+                        let sg = l.segment();
+                        if (sg.point2() - sg.point1()).cross(start - sg.point1()) <= ZERO {
+                            try_shape(ShapeRef::ChainLink(l), &mut best);
+                        }
+                        false
+                    });
+                    continue;
+                }
+                let Some(body_shape) = ShapeRef::of(&body_shape, &self.paths, 0) else { continue };
+                try_shape(body_shape, &mut best);
             }
-            let Some(body_shape) = ShapeRef::of(&b.shape, &self.paths, 0) else { continue };
-            try_shape(body_shape, &mut best);
         }
         Ok(best)
     }

@@ -209,7 +209,7 @@ pub(crate) struct StepParts<'w, 'a> {
 /// With `strict_capacity`, [`Error::CapacityFull`] when the candidate pairs
 /// or arbiters do not fit the contact buffers.
 pub(crate) fn run(ctx: &StepContext, p: StepParts<'_, '_>) -> Result<StepReport, Error> {
-    let found = collision::broad_phase(ctx, p.bodies, p.joints, p.broad_phase, p.arbiters)?;
+    let found = collision::broad_phase(ctx, p.bodies, p.paths, p.joints, p.broad_phase, p.arbiters)?;
     p.events.clear();
     force::apply(ctx, p.bodies, p.generators);
     let candidates = p.broad_phase.candidates(found.count);

@@ -287,6 +287,7 @@ fn in_strict_mode_a_full_pair_buffer_is_an_error_and_changes_nothing() {
             post_step_callbacks: 4,
             events: 64,
             chain_vertices: 0,
+            shapes: 0,
         },
     )
     .expect("world");

@@ -140,6 +140,7 @@ fn four_balls(contacts: usize) -> World<'static> {
         post_step_callbacks: 4,
         events: 64,
         chain_vertices: 0,
+        shapes: 0,
     };
     let mut w = World::with_capacities(WorldDef::new(s(50.0), s(50.0)), caps).expect("world");
     for x in [10.0, 11.5, 20.0, 21.5] {

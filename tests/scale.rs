@@ -29,6 +29,7 @@ fn large_pyramid_after_1000_steps() {
         post_step_callbacks: 64,
         events: 64,
         chain_vertices: 0,
+        shapes: 0,
     };
     let mut w = World::with_capacities(WorldDef::with_bounds(bounds), caps).expect("world");
     let ground = w.add_path(PolygonPath::rectangle(s(200.0), s(2.0)).expect("ground")).expect("p");

@@ -152,14 +152,20 @@ fn the_sensor_flag_and_its_overlaps_survive_a_snapshot() {
     let zone = w.add_body(BodyDef::circle(s(2.0)).static_body().sensor()).expect("zone");
     let ball = w.add_body(BodyDef::circle(s(0.25)).position(v(0.0, 1.0))).expect("ball");
     w.step(s(DT)).expect("step");
-    assert_eq!(w.sensor_begin_events(), &[SensorEvent { sensor: zone, visitor: ball }]);
+    assert_eq!(
+        w.sensor_begin_events(),
+        &[SensorEvent { sensor: zone, visitor: ball, sensor_shape: 0, visitor_shape: 0 }]
+    );
     let mut buf = vec![0u8; w.snapshot_len()];
     w.snapshot(&mut buf).expect("snapshot");
     let hash = w.state_hash();
     // Move the ball out (an end), then go back.
     w.set_position(ball, v(10.0, 10.0)).expect("move");
     w.step(s(DT)).expect("step");
-    assert_eq!(w.sensor_end_events(), &[SensorEvent { sensor: zone, visitor: ball }]);
+    assert_eq!(
+        w.sensor_end_events(),
+        &[SensorEvent { sensor: zone, visitor: ball, sensor_shape: 0, visitor_shape: 0 }]
+    );
     w.restore(&buf).expect("restore");
     assert!(w.body(zone).expect("zone").is_sensor());
     assert_eq!(w.state_hash(), hash);

@@ -38,6 +38,7 @@ pub fn capacities(bodies: usize, joints: usize) -> Capacities {
         post_step_callbacks: 64,
         events: 64,
         chain_vertices: 0,
+        shapes: 0,
     }
 }
 

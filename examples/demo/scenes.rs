@@ -5,7 +5,7 @@
 
 use arphysics::{
     BodyDef, BodyHandle, Capacities, Capsule, ChainPath, Error, GravityForceGenerator, JointDef, JointKind,
-    PathHandle, PolygonPath, Rect, Rot, Scalar, Vector2, World, WorldDef,
+    PathHandle, PolygonPath, Rect, Rot, Scalar, ShapeDef, Vector2, World, WorldDef,
 };
 
 /// `n` centimetres (or centiradians), exactly.
@@ -211,10 +211,32 @@ fn world(bodies: usize, joints: usize) -> Result<World<'static>, Error> {
         post_step_callbacks: 64,
         events: 64,
         chain_vertices: 64,
+        shapes: 16,
     };
     let mut w = World::with_capacities(WorldDef::with_bounds(bounds), capacities)?;
     w.add_force_generator(GravityForceGenerator::new(Vector2::from_int(0, -10)))?;
     Ok(w)
+}
+
+/// Three compound bodies (several shapes on one body) with their left end
+/// at (x, y) cm: an L of two boxes, a hammer (a capsule handle and a box
+/// head, the head eight times as dense), and a dumbbell (a capsule bar and a
+/// ball at each end).
+pub fn add_compound_toys(w: &mut World<'_>, x: i32, y: i32) -> Result<(), Error> {
+    let arm = w.add_path(PolygonPath::rectangle(cm(160), cm(30))?)?;
+    let leg = w.add_path(PolygonPath::rectangle(cm(30), cm(130))?)?;
+    let l = w.add_body(BodyDef::polygon(arm).position(at(x + 80, y)).angle(cm(20)))?;
+    w.add_shape(l, ShapeDef::polygon(leg).offset(at(-65, 80)))?;
+    let head = w.add_path(PolygonPath::rounded_rectangle(cm(40), cm(80), cm(8))?)?;
+    let handle = Capsule::new(at(-70, 0), at(70, 0), cm(8))?;
+    let hammer = w.add_body(BodyDef::capsule(handle).position(at(x + 300, y + 100)).angle(cm(-40)))?;
+    w.add_shape(hammer, ShapeDef::polygon(head).offset(at(85, 0)).density(cm(800)))?;
+    let bar = Capsule::new(at(-60, 0), at(60, 0), cm(10))?;
+    let dumbbell = w.add_body(BodyDef::capsule(bar).position(at(x + 550, y + 50)).angle(cm(10)))?;
+    for side in [-1, 1] {
+        w.add_shape(dumbbell, ShapeDef::circle(cm(30)).offset(at(side * 75, 0)).restitution(cm(30)))?;
+    }
+    Ok(())
 }
 
 /// A static box `w` × `h` cm centred at (x, y) cm, turned by `angle` centiradians.
@@ -413,6 +435,7 @@ fn terrain() -> Result<Running, Error> {
     let ledge = w.add_path(PolygonPath::rounded_rectangle(cm(400), cm(60), cm(25))?)?;
     w.add_body(BodyDef::polygon(ledge).position(at(-900, 900)).angle(cm(-25)).static_body())?;
     let rounded = w.add_path(PolygonPath::rounded_rectangle(cm(90), cm(70), cm(15))?)?;
+    add_compound_toys(&mut w, 200, 1200)?;
     let shapes = Shapes::add(&mut w)?;
     let spawn = Spawner {
         shapes,

@@ -29,6 +29,9 @@ enum Outline {
     Capsule((f64, f64), (f64, f64), f64),
     /// A chain's points and whether it closes (drawn as a thin polyline).
     Chain(Vec<(f64, f64)>, bool),
+    /// A compound body's shapes, each placed on the body (x, y in m, angle in
+    /// degrees).
+    Group(Vec<((f64, f64, f64), Outline)>),
 }
 
 /// One body's poses: x, y (m) and the angle in degrees, unwrapped so that the
@@ -56,9 +59,29 @@ fn xy(v: Vector2) -> (f64, f64) {
     v.to_f64()
 }
 
-/// The colour of a dynamic body by kind; static bodies are grey.
-fn colour(body: &Body, world: &World<'_>, jointed: bool) -> (Outline, &'static str) {
-    match body.shape() {
+/// The colour of a dynamic body by kind (a compound body's by its first
+/// shape); static bodies are grey.
+fn colour(h: BodyHandle, body: &Body, world: &World<'_>, jointed: bool) -> (Outline, &'static str) {
+    let (first, fill) = shape_colour(body.shape(), body, world, jointed);
+    if body.shape_count() < 2 {
+        return (first, fill);
+    }
+    let parts = world
+        .shapes(h)
+        .into_iter()
+        .flatten()
+        .map(|(_, s)| {
+            let (x, y) = xy(s.local.p);
+            let deg = s.local.q.s.to_num::<f64>().atan2(s.local.q.c.to_num::<f64>()).to_degrees();
+            ((x, y, deg), shape_colour(s.shape, body, world, jointed).0)
+        })
+        .collect();
+    (Outline::Group(parts), fill)
+}
+
+/// The outline of one shape and its colour by kind.
+fn shape_colour(shape: Shape, body: &Body, world: &World<'_>, jointed: bool) -> (Outline, &'static str) {
+    match shape {
         Shape::Circle { radius } => {
             let fill = if jointed {
                 "#5d4037"
@@ -117,7 +140,7 @@ impl Recorder {
             let i = match self.by_handle.get(&h) {
                 Some(&i) => i,
                 None => {
-                    let (outline, fill) = colour(b, world, jointed.contains(&h));
+                    let (outline, fill) = colour(h, b, world, jointed.contains(&h));
                     let fill = if b.is_static() { "#9aa0a6" } else { fill };
                     self.tracks.push(Track {
                         look: Look { outline, fill, is_static: b.is_static() },
@@ -198,7 +221,7 @@ impl Recorder {
                 num(x, 3),
                 num(y, 3),
                 num(a, 2),
-                shape(&t.look)
+                shape(&t.look.outline, t.look.fill)
             );
         }
         for t in self.tracks.iter().filter(|t| !t.look.is_static) {
@@ -254,7 +277,7 @@ impl Recorder {
                 num(dur, 3)
             );
         }
-        let _ = writeln!(s, "{}</g>", shape(&t.look));
+        let _ = writeln!(s, "{}</g>", shape(&t.look.outline, t.look.fill));
     }
 
     fn write_joints(&self, s: &mut String, dur: f64) {
@@ -299,10 +322,22 @@ impl Recorder {
 }
 
 /// The body's outline in its own frame.
-fn shape(look: &Look) -> String {
-    match &look.outline {
+fn shape(outline: &Outline, fill: &str) -> String {
+    match outline {
+        Outline::Group(parts) => parts
+            .iter()
+            .map(|((x, y, a), o)| {
+                format!(
+                    r#"<g transform="translate({} {}) rotate({})">{}</g>"#,
+                    num(*x, 3),
+                    num(*y, 3),
+                    num(*a, 1),
+                    shape(o, fill)
+                )
+            })
+            .collect(),
         Outline::Circle(r) => {
-            format!(r#"<circle r="{r}" fill="{f}"/><path d="M0 0H{r}"/>"#, r = num(*r, 3), f = look.fill)
+            format!(r#"<circle r="{r}" fill="{f}"/><path d="M0 0H{r}"/>"#, r = num(*r, 3), f = fill)
         }
         Outline::Polygon(v, rounding) => {
             let points: Vec<String> = v.iter().map(|p| format!("{},{}", num(p.0, 3), num(p.1, 3))).collect();
@@ -310,13 +345,13 @@ fn shape(look: &Look) -> String {
             let stroke = if *rounding > 0.0 {
                 format!(
                     r#" stroke="{}" stroke-width="{}" stroke-linejoin="round""#,
-                    look.fill,
+                    fill,
                     num(2.0 * rounding, 3)
                 )
             } else {
                 String::new()
             };
-            format!(r#"<polygon points="{}" fill="{}"{stroke}/>"#, points.join(" "), look.fill)
+            format!(r#"<polygon points="{}" fill="{}"{stroke}/>"#, points.join(" "), fill)
         }
         Outline::Capsule(a, b, r) => {
             // A capsule is its core segment stroked with round caps, 2r wide;
@@ -329,7 +364,7 @@ fn shape(look: &Look) -> String {
                 num(a.1, 3),
                 num(b.0, 3),
                 num(b.1, 3),
-                look.fill,
+                fill,
                 num(width, 3)
             )
         }
@@ -339,7 +374,7 @@ fn shape(look: &Look) -> String {
             format!(
                 r#"<{tag} points="{}" fill="none" stroke="{}" stroke-width="0.08" stroke-linejoin="round"/>"#,
                 points.join(" "),
-                look.fill
+                fill
             )
         }
     }

@@ -15,8 +15,9 @@ use arphysics_fuzz::{Input, Op, Outcome, Runner, MAX_OPS};
 use libfuzzer_sys::fuzz_target;
 
 /// Larger than any capacity an input can ask for (32 bodies, 16 paths, 128
-/// contacts, 32 joints, 64 chain vertices; 16 events, the default callbacks).
-type Big = WorldBuffers<40, 160, 40, 64, 64, 80>;
+/// contacts, 32 joints, 64 chain vertices, 32 shapes; 16 events, the default
+/// callbacks).
+type Big = WorldBuffers<40, 160, 40, 64, 64, 80, 40>;
 
 fuzz_target!(|input: Input| {
     let caps = input.world.capacities();

@@ -9,7 +9,7 @@ use arphysics_fuzz::{Op, Outcome, Runner, SnapshotInput, MAX_OPS};
 use libfuzzer_sys::fuzz_target;
 
 /// Larger than any capacity an input can ask for (as `replay_equal`'s).
-type Big = WorldBuffers<40, 160, 40, 64, 64, 80>;
+type Big = WorldBuffers<40, 160, 40, 64, 64, 80, 40>;
 
 /// Runs `ops` and records each outcome with the state hash after it, and whether
 /// it found a store full.

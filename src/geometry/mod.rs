@@ -21,7 +21,7 @@ pub use capsule::{Capsule, Segment, MIN_SEGMENT_LENGTH};
 pub use chain::{ChainHandle, ChainNode, ChainPath, CHAIN_BYTES_PER_VERTEX, MAX_CHAIN_VERTICES};
 pub use chain_segment::ChainSegment;
 pub use circle::{circle_area, circle_unit_inertia, MAX_CIRCLE_RADIUS};
-pub use mass::{MassData, MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};
+pub use mass::{compound_mass, MassData, MassPart, MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};
 pub use polygon_path::{
     PolygonPath, MAX_POLYGON_RADIUS, MAX_POLYGON_VERTICES, MIN_POLYGON_AREA, MIN_POLYGON_THICKNESS,
 };

@@ -162,6 +162,14 @@ impl Transform {
         self.q.inv_rotate(v - self.p)
     }
 
+    /// Frame `local` (given in frame `self`) in the frame `self` is given in:
+    /// `self ∘ local`. The identity on either side gives the other exactly.
+    #[inline]
+    #[must_use]
+    pub fn compose(self, local: Self) -> Self {
+        Self { p: self.apply(local.p), q: self.q.compose(local.q) }
+    }
+
     /// The transform of frame `b` expressed in frame `self`: `self⁻¹ ∘ b`.
     #[inline]
     #[must_use]

@@ -1,15 +1,17 @@
 //! The apply step of a restore: writes a snapshot that `validate` accepted into
 //! the world. Arenas are rewritten slot by slot with their generations and free
 //! lists, so handles, slot reuse and iteration order come back exactly; derived
-//! body data (radius, bounding box, inverse mass) is recomputed from the record.
+//! body data (radius, bounding box, inverse mass) is recomputed from the record
+//! (a compound body's radius and box from its shapes, restored first).
 
 use super::layout::{BodyRecord, GeneratorRecord, Layout, StoredGenerator};
 use super::write::Props;
 use super::{NO_LINK, TOUCHING};
 use crate::arbiter::{Arbiter, ArbiterState};
 use crate::arena::NO_SLOT;
-use crate::body::{compute_aabb, shape_radius};
+use crate::body::{body_radius, compute_aabb};
 use crate::body::{Body, BodyHandle};
+use crate::compound::{ShapeSlot, MAX_SHAPES_PER_BODY, NO_SHAPE};
 use crate::geometry::MassData;
 use crate::math::scalar::{Scalar, ZERO};
 use crate::world::World;
@@ -27,14 +29,34 @@ fn slot_link(link: u32) -> u32 {
 pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
     w.step_count = l.step_count;
     w.def.substeps = l.def.substeps;
-    // Bodies.
+    // The shape store first: a compound body's radius and box come from it.
+    let slots = &mut w.paths.slots;
+    match l.shapes {
+        Some(section) => {
+            for i in 0..section.alloc.used {
+                let Ok(r) = l.shape(i) else { continue };
+                let next_free = if r.data.is_some() { NO_SLOT } else { slot_link(r.link) };
+                let slot = r.data.map(|data| ShapeSlot { owner: r.owner, next: r.next, data });
+                slots.write_slot(i, r.generation, next_free, slot, false);
+            }
+            slots.finish_restore(section.alloc.used, slot_link(section.alloc.free_head), section.alloc.len);
+        }
+        None => slots.finish_restore(0, NO_SLOT, 0),
+    }
+    // Bodies, each compound body's list head and count from the list that
+    // follows the shape slots (in body-slot order, as the bodies are).
     let mut recips = Recips::new();
+    let mut compounds = Compounds { l, next: 0 };
     for i in 0..l.bodies.used {
         let Ok(r) = l.body(i) else { continue };
         if r.live() {
             let Ok(p) = l.props(r.index()) else { continue };
             let mut body = body_from(&p, &r, &mut recips);
-            body.radius = shape_radius(p.shape, &w.paths);
+            if let Some((head, count)) = compounds.of(i) {
+                body.shapes = head;
+                body.shape_count = count;
+            }
+            body.radius = body_radius(&body, &w.paths);
             body.aabb = compute_aabb(&body, &w.paths);
             w.bodies.write_slot(i, r.generation, NO_SLOT, Some(body), false);
         } else {
@@ -64,11 +86,12 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
             level_a: level(a.a),
             level_b: level(a.b),
             state: ArbiterState::from_u8(a.state & !TOUCHING).unwrap_or(ArbiterState::Separated),
-            touching: a.state & TOUCHING != 0,
             count: a.count,
             ..Arbiter::EMPTY
         };
-        arb.set_steps_and_link(a.steps_separated, a.link);
+        arb.set_touching(a.state & TOUCHING != 0);
+        arb.set_steps_and_link(a.steps_separated, a.link());
+        arb.set_shapes(a.shape_a(), a.shape_b());
         for (p, stored) in arb.points.iter_mut().zip(a.points) {
             p.id = stored.id;
             p.normal_impulse = stored.normal_impulse;
@@ -84,6 +107,38 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
     }
     w.joints.finish_restore(l.joints.used, slot_link(l.joints.free_head), l.joints.len);
     w.post_step.clear();
+}
+
+/// The compound bodies' list of a validated snapshot, read in body-slot order.
+struct Compounds<'l, 'b> {
+    l: &'l Layout<'b>,
+    /// The next entry not yet passed.
+    next: u32,
+}
+
+impl Compounds<'_, '_> {
+    /// The first shape slot and the shape count of body slot `body`, when
+    /// it is a compound body; `body` must grow from call to call.
+    fn of(&mut self, body: u32) -> Option<(u32, u8)> {
+        let section = self.l.shapes?;
+        while self.next < section.compounds {
+            let (b, head) = self.l.compound(self.next).ok()?;
+            if b > body {
+                return None;
+            }
+            self.next = self.next.saturating_add(1);
+            if b == body {
+                let mut count = 0u8;
+                let mut at = head;
+                while at != NO_SHAPE && usize::from(count) < MAX_SHAPES_PER_BODY {
+                    at = self.l.shape(at).map_or(NO_SHAPE, |r| r.next);
+                    count = count.saturating_add(1);
+                }
+                return Some((head, count));
+            }
+        }
+        None
+    }
 }
 
 /// `x.recip()`, remembered for a few recent values: the bodies of one shape

@@ -12,6 +12,9 @@ pub enum Object {
     World,
     /// The body in this slot.
     Body(u32),
+    /// The slot of the world's shape store with this index, which holds one
+    /// shape of a compound body (see [`crate::compound`]).
+    Shape(u32),
     /// The force generator in this slot.
     Generator(u32),
     /// The arbiter of the bodies in these two slots (lower first).
@@ -34,6 +37,7 @@ impl fmt::Display for Difference {
         match self.object {
             Object::World => write!(f, "world: {}", self.field),
             Object::Body(i) => write!(f, "body in slot {i}: {}", self.field),
+            Object::Shape(i) => write!(f, "shape in slot {i}: {}", self.field),
             Object::Generator(i) => write!(f, "force generator in slot {i}: {}", self.field),
             Object::Arbiter(a, b) => write!(f, "arbiter of bodies {a} and {b}: {}", self.field),
             Object::Joint(i) => write!(f, "joint in slot {i}: {}", self.field),
@@ -111,6 +115,9 @@ pub fn diff(a: &[u8], b: &[u8]) -> Result<Option<Difference>, Error> {
             return found(object, field);
         }
     }
+    if let Some(d) = diff_shapes(&la, &lb)? {
+        return Ok(Some(d));
+    }
     if la.generators != lb.generators {
         return found(Object::World, "generator allocator");
     }
@@ -132,7 +139,7 @@ pub fn diff(a: &[u8], b: &[u8]) -> Result<Option<Difference>, Error> {
         let (x, y, _) = aa.key();
         let object = Object::Arbiter(x, y);
         let fields = [
-            (aa.key() != ab.key() || aa.a != ab.a || aa.b != ab.b, "bodies or chain link"),
+            (aa.key() != ab.key() || aa.a != ab.a || aa.b != ab.b, "bodies, chain link or shapes"),
             (aa.state != ab.state, "state"),
             (aa.steps_separated != ab.steps_separated, "steps since separation"),
             (aa.count != ab.count, "contact point count"),
@@ -171,6 +178,66 @@ pub fn diff(a: &[u8], b: &[u8]) -> Result<Option<Difference>, Error> {
             if let Some((_, field)) = fields.iter().find(|(differs, _)| *differs) {
                 return found(object, field);
             }
+        }
+    }
+    Ok(None)
+}
+
+/// The first difference in the shapes sections (the shape store and the
+/// compound bodies' list heads).
+fn diff_shapes(la: &Layout<'_>, lb: &Layout<'_>) -> Result<Option<Difference>, Error> {
+    let found = |object, field| Ok(Some(Difference { object, field }));
+    let (Some(sa), Some(sb)) = (la.shapes, lb.shapes) else {
+        return if la.shapes.is_some() == lb.shapes.is_some() {
+            Ok(None)
+        } else {
+            found(Object::World, "shape store")
+        };
+    };
+    if sa.alloc != sb.alloc {
+        return found(Object::World, "shape allocator");
+    }
+    for i in 0..sa.alloc.used {
+        let (ra, rb) = (la.shape(i)?, lb.shape(i)?);
+        let object = Object::Shape(i);
+        if ra.data.is_some() != rb.data.is_some() {
+            return found(object, "exists");
+        }
+        let fields = [
+            (ra.generation != rb.generation, "generation"),
+            (ra.link != rb.link, "free-list link"),
+            (ra.owner != rb.owner, "owner"),
+            (ra.next != rb.next, "next shape"),
+        ];
+        if let Some((_, field)) = fields.iter().find(|(differs, _)| *differs) {
+            return found(object, field);
+        }
+        let (Some(a), Some(b)) = (ra.data, rb.data) else { continue };
+        let fields = [
+            (a.shape != b.shape, "shape"),
+            (a.local.p != b.local.p, "offset"),
+            (a.local.q != b.local.q, "rotation"),
+            (a.mass != b.mass, "mass"),
+            (a.inertia != b.inertia, "inertia"),
+            (a.friction != b.friction, "friction"),
+            (a.restitution != b.restitution, "restitution"),
+            (a.filter != b.filter, "collision filter"),
+            (a.sensor != b.sensor, "sensor"),
+        ];
+        if let Some((_, field)) = fields.iter().find(|(differs, _)| *differs) {
+            return found(object, field);
+        }
+    }
+    if sa.compounds != sb.compounds {
+        return found(Object::World, "compound body count");
+    }
+    for k in 0..sa.compounds {
+        let ((ba, ha), (bb, hb)) = (la.compound(k)?, lb.compound(k)?);
+        if ba != bb {
+            return found(Object::Body(ba.min(bb)), "compound or not");
+        }
+        if ha != hb {
+            return found(Object::Body(ba), "first shape slot");
         }
     }
     Ok(None)

@@ -68,11 +68,11 @@ impl Sink for Hash64 {
 /// | part | bytes of the encoding |
 /// |---|---|
 /// | `world` | step count, world settings, polygon-path checksum |
-/// | `bodies` | the body-properties table; for each live body its flags, properties index, position, rotation and velocities |
+/// | `bodies` | the body-properties table; for each live body its flags, properties index, position, rotation and velocities; each shape of a compound body (owner, next shape, shape, frame, mass, material, filter, sensor) and the compound bodies' list heads |
 /// | `generators` | each generator slot's kind and parameters (targets included) |
 /// | `contacts` | the arbiters: pairs, states, persistence counters, feature ids, warm-start impulses |
 /// | `joints` | each joint slot's definition, reference angle and accumulated impulses |
-/// | `allocators` | for bodies, generators and joints: slots used, free-list head and live count, and each slot's generation and free-list link |
+/// | `allocators` | for bodies, generators, joints and (once used) the shape store: slots used, free-list head and live count, and each slot's generation and free-list link |
 ///
 /// A body added or removed changes `bodies` and `allocators`; a body that moved
 /// changes `bodies` only. Queued post-step callbacks are not a part: the

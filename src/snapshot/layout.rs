@@ -1,22 +1,26 @@
 //! The record layouts of a snapshot: where each section starts ([`Layout`]) and
 //! how each record decodes (`BodyRecord`, `GeneratorRecord`, `ArbiterRecord`
-//! with its `PointRecord`s, `JointRecord`, and the properties as `Props`).
+//! with its `PointRecord`s, `JointRecord`, `ShapeRecord`, and the properties
+//! as `Props`).
 //!
 //! [`Layout::parse`] checks the framing and sizes only: the header, the
 //! version, the length (which may be shorter than the buffer), the checksum in
 //! the trailer over every byte before it — before any other field is read —
-//! and that the sections fill the length exactly. Body, property, arbiter and
-//! joint records have a fixed size, so record `i` is read on demand at a computed
+//! and that the sections fill the length exactly. Body, property, arbiter,
+//! joint and shape records have a fixed size, so record `i` is read on demand at a computed
 //! offset, without copying the buffer; generators vary in size and are read in
 //! order. Whether the values make sense for a world is `validate`'s job.
 
 use super::cursor::Cursor;
 use super::write::Props;
 use super::{
-    checksum, invalid, ARBITER_LINKS, ARBITER_RECORD, BODY_RECORD, BULLET, FIXED_ROTATION, HEADER,
-    JOINT_RECORD, LINK_MASK, LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, TRAILER, VERSION,
+    checksum, invalid, ARBITER_LINKS, ARBITER_RECORD, BODY_RECORD, BULLET, COMPOUND_RECORD, FIXED_ROTATION,
+    HEADER, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, SHAPES, SHAPES_SHIFT,
+    SHAPE_RECORD, TRAILER, VERSION,
 };
+use crate::arbiter::{sub_key, MAX_LINK, MAX_SHAPE_INDEX};
 use crate::body::{BodyHandle, BodyType, CollisionFilter, Shape};
+use crate::compound::BodyShape;
 use crate::constraint::{Joint, JointDef, JointKind, MaxTorque, Motor};
 use crate::error::Error;
 use crate::force::{
@@ -24,7 +28,7 @@ use crate::force::{
 };
 use crate::geometry::{Capsule, ChainHandle, Segment};
 use crate::math::scalar::{Scalar, ZERO};
-use crate::math::{Rot, Vector2};
+use crate::math::{Rot, Transform, Vector2};
 use crate::world::{WorldDef, MAX_FORCE_GENERATORS};
 
 /// Allocator state of an arena in a snapshot.
@@ -54,8 +58,23 @@ pub(super) struct Layout<'b> {
     pub(super) links_at: Option<usize>,
     pub(super) joints: Alloc,
     pub(super) joints_at: usize,
+    /// The shapes section, when the properties count flags one ([`SHAPES`]).
+    pub(super) shapes: Option<ShapesAt>,
     /// The world tag of the handles read (0 unless [`Layout::for_world`]).
     pub(super) tag: u16,
+}
+
+/// Where the shapes section's parts are.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct ShapesAt {
+    /// The shape store's allocator state.
+    pub(super) alloc: Alloc,
+    /// The first slot record.
+    pub(super) slots_at: usize,
+    /// Entries of the compound bodies' list.
+    pub(super) compounds: u32,
+    /// The first entry of that list.
+    pub(super) compounds_at: usize,
 }
 
 fn read_alloc(c: &mut Cursor<'_>) -> Result<Alloc, Error> {
@@ -94,6 +113,40 @@ fn read_def(c: &mut Cursor<'_>) -> Result<WorldDef, Error> {
     })
 }
 
+/// A shape field: the kind (1 byte) and 24 bytes, zero-padded (the
+/// properties record's first 25 bytes, and a shape record's).
+fn read_shape(c: &mut Cursor<'_>) -> Result<Shape, Error> {
+    // What each kind does not use must be zero.
+    let (shape, used) = match c.u8()? {
+        0 => (Shape::Circle { radius: c.scalar()? }, 8),
+        1 => (Shape::Polygon(c.handle()?), 8),
+        2 => {
+            let h = c.vector()?;
+            (Shape::Capsule(Capsule { center1: -h, center2: h, radius: c.scalar()? }), 24)
+        }
+        3 => {
+            let h = c.vector()?;
+            (Shape::Segment(Segment { point1: -h, point2: h }), 16)
+        }
+        4 => {
+            let (start, count) = (c.u32()?, c.u32()?);
+            let closed = match c.u64()? {
+                0 => false,
+                1 => true,
+                _ => return Err(invalid("unknown chain kind")),
+            };
+            (Shape::Chain(ChainHandle { start, count, closed }), 16)
+        }
+        _ => return Err(invalid("unknown shape")),
+    };
+    for _ in used / 8..3 {
+        if c.u64()? != 0 {
+            return Err(invalid("shape padding not zero"));
+        }
+    }
+    Ok(shape)
+}
+
 impl<'b> Layout<'b> {
     /// Parses the snapshot at the start of `buf`; bytes after its length are
     /// ignored.
@@ -121,11 +174,23 @@ impl<'b> Layout<'b> {
         let def = read_def(&mut c)?;
         let paths = c.u64()?;
         let props = c.u32()?;
+        let (props, with_shapes) = (props & !SHAPES, props & SHAPES != 0);
         let props_at = c.pos();
         skip_records(&mut c, props, PROPS_RECORD)?;
         let bodies = read_alloc(&mut c)?;
         let bodies_at = c.pos();
         skip_records(&mut c, bodies.used, BODY_RECORD)?;
+        let shapes = if with_shapes {
+            let alloc = read_alloc(&mut c)?;
+            let slots_at = c.pos();
+            skip_records(&mut c, alloc.used, SHAPE_RECORD)?;
+            let compounds = c.u32()?;
+            let compounds_at = c.pos();
+            skip_records(&mut c, compounds, COMPOUND_RECORD)?;
+            Some(ShapesAt { alloc, slots_at, compounds, compounds_at })
+        } else {
+            None
+        };
         let generators = read_alloc(&mut c)?;
         if generators.used as usize > MAX_FORCE_GENERATORS {
             return Err(invalid("more generator slots than any world has"));
@@ -164,6 +229,7 @@ impl<'b> Layout<'b> {
             links_at,
             joints,
             joints_at,
+            shapes,
             tag: 0,
         })
     }
@@ -190,35 +256,7 @@ impl<'b> Layout<'b> {
 
     pub(super) fn props(&self, i: u32) -> Result<Props, Error> {
         let mut c = self.record::<PROPS_RECORD>(self.props_at, i);
-        let kind = c.u8()?;
-        // The 24-byte shape field: what each kind does not use must be zero.
-        let (shape, used) = match kind {
-            0 => (Shape::Circle { radius: c.scalar()? }, 8),
-            1 => (Shape::Polygon(c.handle()?), 8),
-            2 => {
-                let h = c.vector()?;
-                (Shape::Capsule(Capsule { center1: -h, center2: h, radius: c.scalar()? }), 24)
-            }
-            3 => {
-                let h = c.vector()?;
-                (Shape::Segment(Segment { point1: -h, point2: h }), 16)
-            }
-            4 => {
-                let (start, count) = (c.u32()?, c.u32()?);
-                let closed = match c.u64()? {
-                    0 => false,
-                    1 => true,
-                    _ => return Err(invalid("unknown chain kind")),
-                };
-                (Shape::Chain(ChainHandle { start, count, closed }), 16)
-            }
-            _ => return Err(invalid("unknown shape")),
-        };
-        for _ in used / 8..3 {
-            if c.u64()? != 0 {
-                return Err(invalid("shape padding not zero"));
-            }
-        }
+        let shape = read_shape(&mut c)?;
         let kind = c.u8()?;
         if kind & (BULLET | SENSOR) == BULLET | SENSOR {
             return Err(invalid("a sensor marked bullet"));
@@ -285,11 +323,11 @@ impl<'b> Layout<'b> {
         for p in &mut points {
             *p = PointRecord { id: c.u16()?, normal_impulse: c.scalar()?, tangent_impulse: c.scalar()? };
         }
-        let link = match self.links_at {
+        let sub = match self.links_at {
             Some(at) => self.record::<4>(at, i).u32()?,
             None => 0,
         };
-        Ok(ArbiterRecord { a, b, state, steps_separated, count, points, link })
+        Ok(ArbiterRecord { a, b, state, steps_separated, count, points, sub })
     }
 
     pub(super) fn joint(&self, i: u32) -> Result<JointRecord, Error> {
@@ -299,6 +337,64 @@ impl<'b> Layout<'b> {
         let joint = if c.bool()? { Some(read_joint(&mut c)?) } else { None };
         Ok(JointRecord { generation, next, joint })
     }
+
+    /// Slot `i` of the shape store (the shapes section must be there).
+    pub(super) fn shape(&self, i: u32) -> Result<ShapeRecord, Error> {
+        let at = self.shapes.map_or(usize::MAX, |s| s.slots_at);
+        let mut c = self.record::<SHAPE_RECORD>(at, i);
+        let generation = c.u32()?;
+        let link = c.u32()?;
+        if link & LIVE == 0 {
+            if link & !LINK_MASK != 0 || c.take::<{ SHAPE_RECORD - 8 }>()? != [0; SHAPE_RECORD - 8] {
+                return Err(invalid("a free shape slot holds data"));
+            }
+            return Ok(ShapeRecord { generation, link, owner: 0, next: 0, data: None });
+        }
+        if link != LIVE {
+            return Err(invalid("flags on a used shape slot"));
+        }
+        let owner = c.u32()?;
+        let next = c.u32()?;
+        let shape = read_shape(&mut c)?;
+        let local = Transform::new(c.vector()?, c.rot()?);
+        let data = BodyShape {
+            shape,
+            local,
+            mass: c.scalar()?,
+            inertia: c.scalar()?,
+            friction: c.scalar()?,
+            restitution: c.scalar()?,
+            filter: CollisionFilter {
+                category_bits: c.u64()?,
+                mask_bits: c.u64()?,
+                group_index: c.u32()? as i32,
+            },
+            sensor: c.bool()?,
+        };
+        Ok(ShapeRecord { generation, link, owner, next, data: Some(data) })
+    }
+
+    /// Entry `k` of the compound bodies' list: the body's slot and the slot
+    /// of its first shape.
+    pub(super) fn compound(&self, k: u32) -> Result<(u32, u32), Error> {
+        let at = self.shapes.map_or(usize::MAX, |s| s.compounds_at);
+        let mut c = self.record::<COMPOUND_RECORD>(at, k);
+        Ok((c.u32()?, c.u32()?))
+    }
+}
+
+/// One slot of the shape store as stored.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct ShapeRecord {
+    pub(super) generation: u32,
+    /// [`LIVE`] for a used slot; else the free-list successor.
+    pub(super) link: u32,
+    /// The owner's body slot (a used slot only).
+    pub(super) owner: u32,
+    /// The body's next shape slot (a used slot only).
+    pub(super) next: u32,
+    /// The shape (a used slot only).
+    pub(super) data: Option<BodyShape>,
 }
 
 /// One body slot as stored.
@@ -431,8 +527,9 @@ pub(super) struct ArbiterRecord {
     pub(super) steps_separated: u32,
     pub(super) count: u8,
     pub(super) points: [PointRecord; 2],
-    /// The chain link (0 when the pair has none).
-    pub(super) link: u32,
+    /// The sub-key word (see [`ARBITER_LINKS`]): the chain link and the
+    /// shape indices (0 when the pair has no section).
+    pub(super) sub: u32,
 }
 
 /// One contact point of an arbiter as stored: its feature id and its
@@ -445,9 +542,32 @@ pub(super) struct PointRecord {
 }
 
 impl ArbiterRecord {
+    /// The key [`Arbiter::key`](crate::arbiter::Arbiter) gives the arbiter.
     pub(super) fn key(&self) -> (u32, u32, u32) {
         let (a, b) = (self.a.index(), self.b.index());
-        (a.min(b), a.max(b), self.link)
+        let (lo, hi) =
+            if a <= b { (self.shape_a(), self.shape_b()) } else { (self.shape_b(), self.shape_a()) };
+        (a.min(b), a.max(b), sub_key(self.link(), lo, hi))
+    }
+
+    /// The chain link: the sub-key word's bits 0–19.
+    pub(super) fn link(&self) -> u32 {
+        self.sub & MAX_LINK
+    }
+
+    /// The shape index on body A.
+    pub(super) fn shape_a(&self) -> u32 {
+        (self.sub >> SHAPES_SHIFT) & MAX_SHAPE_INDEX
+    }
+
+    /// The shape index on body B.
+    pub(super) fn shape_b(&self) -> u32 {
+        (self.sub >> (SHAPES_SHIFT + 3)) & MAX_SHAPE_INDEX
+    }
+
+    /// True when the sub-key word's unused bits (20–25) are 0.
+    pub(super) fn sub_is_canonical(&self) -> bool {
+        self.sub & !(MAX_LINK | (u32::MAX << SHAPES_SHIFT)) == 0
     }
 }
 

@@ -20,13 +20,22 @@
 //!    that share them);
 //! 4. the body allocator and one 64-byte record per body slot (generation,
 //!    free-list link or flags and properties index, position, rotation,
-//!    velocities);
+//!    velocities); then, when bit 31 of the properties count is set
+//!    ([`SHAPES`]: the world's shape store has used a slot), the shapes
+//!    section: the shape store's allocator, one [`SHAPE_RECORD`] per slot it
+//!    has used (generation, free-list link or used flag, owner body, next
+//!    shape, the shape as the properties record holds one, its frame on the
+//!    body, mass, inertia, material, filter, sensor flag), and the compound
+//!    bodies' list ([`COMPOUND_RECORD`]: each compound body's slot and first
+//!    shape slot, in body-slot order; a body's shape count is its list's
+//!    length, and one-shape bodies are in neither);
 //! 5. the generator allocator and the force generators;
 //! 6. the arbiters (58 bytes each: the pair, state and touching flag, steps since separation, and
 //!    per contact point its feature id and accumulated normal and friction
-//!    impulses); when an arbiter is for a chain link other than 0, bit 31 of
-//!    their count is set ([`ARBITER_LINKS`]) and the records are followed by
-//!    each arbiter's link (u32);
+//!    impulses); when an arbiter is for a chain link or a shape other than 0,
+//!    bit 31 of their count is set ([`ARBITER_LINKS`]) and the records are
+//!    followed by each arbiter's sub-key word (u32: the chain link in bits
+//!    0–19, the shape index on body A in bits 26–28 and on body B in 29–31);
 //! 7. the joint allocator and the joints (160 bytes each: the definition with
 //!    its kind as a tag, 0 spring to 5 weld and 6 the target joint, whose
 //!    target is the definition's world point, then the reference angle and
@@ -37,9 +46,10 @@
 //!    byte before it.
 //!
 //! Fixed-size records let `restore` check a buffer completely (free lists
-//! included) before it changes anything. A live body costs 64 bytes, plus 102 for
+//! included) before it changes anything. A live body costs 64 bytes, plus 118 for
 //! its properties unless it shares them with the body before it (a pyramid's
-//! boxes do); an arbiter 58 bytes.
+//! boxes do), plus, for a compound body, 8 and 126 per shape; an arbiter 58
+//! bytes.
 //!
 //! # Integrity, length and hashes
 //! [`World::restore`] reads the framing, then verifies the checksum over the
@@ -121,11 +131,44 @@ pub const PROPS_RECORD: usize = 118;
 /// Bytes of one arbiter record.
 pub const ARBITER_RECORD: usize = 58;
 /// Bit 31 of the arbiter count: the arbiter records are followed by one
-/// chain link (u32) per arbiter. Written only when an arbiter's link is not
-/// 0 (a pair with a chain), so a world without chains encodes as before.
+/// u32 per arbiter, its chain link (bits 0–19) and the indices of its shapes
+/// on body A (bits 26–28) and body B (bits 29–31); bits 20–25 are 0.
+/// Written only when some arbiter's link or shape index is not 0 (a pair
+/// with a chain or a body of several shapes), so a world of one-shape
+/// bodies without chains encodes as before, and one with chains as it did
+/// before bodies had several shapes.
 pub const ARBITER_LINKS: u32 = 1 << 31;
+/// Where an arbiter's shape index on body A starts in its sub-key word (see
+/// [`ARBITER_LINKS`]); body B's follows 3 bits higher.
+const SHAPES_SHIFT: u32 = 26;
 /// Bytes of one joint record.
 pub const JOINT_RECORD: usize = 160;
+/// Bit 31 of the properties count: the body records are followed by the
+/// shapes section (the shape store's allocator state, one [`SHAPE_RECORD`]
+/// per slot it has used, then the compound bodies' list heads). Written only
+/// when the world's shape store has used a slot, so a world that never had a
+/// compound body encodes as before.
+pub const SHAPES: u32 = 1 << 31;
+/// Bytes of one slot of the shape store in the shapes section.
+///
+/// | offset | bytes | field |
+/// |---|---|---|
+/// | 0 | 4 | generation |
+/// | 4 | 4 | bit 31 set for a used slot (bits 0–30 then 0); else bits 0–29 the free-list successor |
+/// | 8 | 4 | the owner: the body's slot |
+/// | 12 | 4 | the next shape's slot of the body's list (`u32::MAX` after its last) |
+/// | 16 | 1 + 24 | the shape, as the properties record's first 25 bytes |
+/// | 41 | 16 + 16 | its frame on the body: offset (x, y) and rotation (cos, sin) |
+/// | 73 | 8 × 4 | mass, inertia, friction, restitution |
+/// | 105 | 8 + 8 + 4 | filter category bits, mask bits, group index (i32) |
+/// | 125 | 1 | sensor (0 or 1) |
+///
+/// Every byte after the first 8 of a free slot is zero.
+pub const SHAPE_RECORD: usize = 126;
+/// Bytes of one entry of the compound bodies' list that closes the shapes
+/// section: the body's slot and the slot of its first shape (u32 each), in
+/// body-slot order. A body's shape count is the length of its list.
+pub const COMPOUND_RECORD: usize = 8;
 
 /// The body-type byte of a properties record: bits 0–1 the type (0 static,
 /// 1 kinematic, 2 dynamic), bit 4 (0x10) the bullet flag, bit 5 (0x20) the
@@ -274,8 +317,9 @@ impl World<'_> {
 
     /// The longest snapshot this world can ever write: every body slot used, each
     /// body with its own properties, every generator slot holding a generator
-    /// with the most targets, the contact store full (with each arbiter's chain
-    /// link when the world has room for chains) and every joint slot used.
+    /// with the most targets, the contact store full (with each arbiter's
+    /// sub-key word when the world has room for chains or compound bodies),
+    /// every shape slot used and every joint slot used.
     /// It depends on the capacities only, so a game can allocate its rollback
     /// ring buffer once (`frames × max_snapshot_len()`); [`World::restore`]
     /// accepts the longer buffer.
@@ -333,7 +377,10 @@ impl World<'_> {
     /// [`Error::InvalidSnapshot`] for truncated, corrupted or foreign bytes;
     /// [`Error::SnapshotMismatch`] for a snapshot of another world (other settings
     /// or paths, more objects than this world's capacities, custom generators in
-    /// other slots). On error the world is unchanged.
+    /// other slots); [`Error::CapacityFull`] (`"shape"`) for a snapshot whose
+    /// compound bodies' shapes used more slots than this world's shape store
+    /// ([`Capacities::shapes`](crate::Capacities::shapes)) has. On error the
+    /// world is unchanged.
     pub fn restore(&mut self, buf: &[u8]) -> Result<(), Error> {
         // The snapshot holds no world tag: its handles become this world's.
         let layout = layout::Layout::parse(buf)?.for_world(self.bodies.tag());

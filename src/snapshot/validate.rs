@@ -9,16 +9,18 @@
 
 use super::layout::{Alloc, BodyRecord, GeneratorRecord, Layout, StoredGenerator};
 use super::write::{paths_checksum, Props};
-use super::{invalid, NO_LINK, TOUCHING};
-use crate::arbiter::{ArbiterState, MAX_LINK, MAX_STEPS_SEPARATED};
-use crate::body::{BodyHandle, BodyType, Shape};
+use super::{invalid, LINK_MASK, NO_LINK, TOUCHING};
+use crate::arbiter::{ArbiterState, MAX_STEPS_SEPARATED};
+use crate::body::{shape_radius, BodyHandle, BodyType, Shape};
+use crate::compound::{BodyShape, MAX_SHAPES_PER_BODY, NO_SHAPE};
 use crate::error::Error;
 use crate::force::{Generator, Targets};
 use crate::geometry::circle::MAX_CIRCLE_RADIUS;
 use crate::geometry::mass::{MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};
 use crate::geometry::{Capsule, Segment};
-use crate::limits::{check_damping, check_friction, check_gravity_scale, check_restitution};
+use crate::limits::{check_damping, check_friction, check_gravity_scale, check_restitution, MAX_BODY_RADIUS};
 use crate::math::scalar::{self, Scalar, ZERO};
+use crate::math::Rot;
 use crate::world::{World, MAX_COORDINATE};
 
 /// Checks a free list: starting at `head`, every link names a free slot below
@@ -52,8 +54,9 @@ fn in_range(v: Scalar, lo: Scalar, hi: Scalar) -> bool {
     v >= lo && v <= hi
 }
 
-fn check_props(w: &World<'_>, p: &Props) -> Result<(), Error> {
-    match p.shape {
+/// A shape of a body of type `body_type` (a chain only on a static body).
+fn check_shape(w: &World<'_>, shape: Shape, body_type: BodyType) -> Result<(), Error> {
+    match shape {
         Shape::Circle { radius } => {
             if !in_range(radius, Scalar::DELTA, MAX_CIRCLE_RADIUS) {
                 return Err(invalid("circle radius out of range"));
@@ -75,11 +78,16 @@ fn check_props(w: &World<'_>, p: &Props) -> Result<(), Error> {
             }
         }
         Shape::Chain(h) => {
-            if !w.paths.chains.valid(h) || p.body_type != BodyType::Static {
+            if !w.paths.chains.valid(h) || body_type != BodyType::Static {
                 return Err(invalid("a body's chain is not in this world"));
             }
         }
     }
+    Ok(())
+}
+
+fn check_props(w: &World<'_>, p: &Props) -> Result<(), Error> {
+    check_shape(w, p.shape, p.body_type)?;
     let ok_mass = match p.body_type {
         BodyType::Dynamic => {
             in_range(p.mass, MIN_MASS, MAX_MASS) && in_range(p.inertia, MIN_INERTIA, MAX_INERTIA)
@@ -105,18 +113,171 @@ fn check_motion(r: &BodyRecord) -> Result<(), Error> {
     if p.x.abs() > far || p.y.abs() > far {
         return Err(invalid("position out of range"));
     }
-    // A constant: `lit` in an expression would parse the string at run time,
-    // once per body.
-    const UNIT_TOLERANCE: Scalar = Scalar::lit("0.000001");
-    let q = r.rotation;
-    let norm = (q.c * q.c) + (q.s * q.s);
-    if (norm - scalar::ONE).abs() > UNIT_TOLERANCE {
+    if !is_unit(r.rotation) {
         return Err(invalid("rotation is not a unit rotation"));
     }
     // Speeds are not limited here: a game may set any velocity between steps,
     // and the step clamps it (see `World::step`), so the snapshot of such a world
     // must restore.
     Ok(())
+}
+
+/// True when `q` is a rotation: cos² + sin² within 1e-6 of 1.
+fn is_unit(q: Rot) -> bool {
+    // A constant: `lit` in an expression would parse the string at run time,
+    // once per body.
+    const UNIT_TOLERANCE: Scalar = Scalar::lit("0.000001");
+    let norm = (q.c * q.c) + (q.s * q.s);
+    (norm - scalar::ONE).abs() <= UNIT_TOLERANCE
+}
+
+/// One shape of a compound body: the shape as a properties record's (no
+/// chain: a chain is a body of its own), a frame within a body's size, mass
+/// and inertia of at most a body's (0 for a segment or on a static body),
+/// the material in range.
+fn check_body_shape(w: &World<'_>, d: &BodyShape) -> Result<(), Error> {
+    if matches!(d.shape, Shape::Chain(_)) {
+        return Err(invalid("a chain among a body's shapes"));
+    }
+    check_shape(w, d.shape, BodyType::Dynamic)?;
+    let p = d.local.p;
+    if p.x.abs() > MAX_BODY_RADIUS || p.y.abs() > MAX_BODY_RADIUS || !is_unit(d.local.q) {
+        return Err(invalid("a shape's frame on its body out of range"));
+    }
+    if !in_range(d.mass, ZERO, MAX_MASS) || !in_range(d.inertia, ZERO, MAX_INERTIA) {
+        return Err(invalid("a shape's mass out of range"));
+    }
+    check_friction(d.friction)
+        .and(check_restitution(d.restitution))
+        .map_err(|_| invalid("material out of range"))
+}
+
+/// The shapes section (see [`super::SHAPES`]): the store fits this world;
+/// every used slot is a valid shape owned by a live body; the free list is
+/// whole; each compound body (listed once, in slot order) has a list of 1 to
+/// [`MAX_SHAPES_PER_BODY`] of its own slots ending in `NO_SHAPE`, whose first
+/// shape is the one the body's properties hold, within the size limit; and
+/// the lists together hold every used slot, so each exactly once.
+fn check_shapes(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
+    let Some(section) = l.shapes else { return Ok(()) };
+    let alloc = section.alloc;
+    if alloc.used == 0 {
+        return Err(invalid("a shapes section without shapes"));
+    }
+    if alloc.used as usize > w.paths.slots.capacity() {
+        return Err(Error::CapacityFull { what: "shape" });
+    }
+    let (mut live, mut retired) = (0u32, 0u32);
+    for i in 0..alloc.used {
+        let r = l.shape(i)?;
+        let Some(d) = r.data else {
+            if r.generation == 0 {
+                retired = retired.saturating_add(1);
+            }
+            continue;
+        };
+        if r.generation == 0 {
+            return Err(invalid("a used shape slot with generation 0"));
+        }
+        if !live_slot(l, r.owner)? {
+            return Err(invalid("a shape's owner is not a live body"));
+        }
+        check_body_shape(w, &d)?;
+        live = live.saturating_add(1);
+    }
+    if live != alloc.len {
+        return Err(invalid("used shape count does not match"));
+    }
+    check_free_list(alloc, retired, |i| {
+        let r = l.shape(i)?;
+        Ok((r.data.is_none() && r.generation != 0).then_some(r.link & LINK_MASK))
+    })?;
+    let (mut listed, mut last) = (0u32, None);
+    for k in 0..section.compounds {
+        let (body, head) = l.compound(k)?;
+        if last.is_some_and(|b| b >= body) {
+            return Err(invalid("compound bodies out of order"));
+        }
+        last = Some(body);
+        if !live_slot(l, body)? {
+            return Err(invalid("a compound body that is not live"));
+        }
+        let p = l.props(l.body(body)?.index())?;
+        let mut radius = ZERO;
+        let n = walk_list(l, body, head, |i, d| {
+            let mirrored = d.shape == p.shape
+                && d.friction == p.friction
+                && d.restitution == p.restitution
+                && d.filter == p.filter
+                && d.sensor == p.sensor;
+            if i == 0 && !mirrored {
+                return Err(invalid("a body's first shape differs from its properties"));
+            }
+            let r = d.local.p.length() + shape_radius(d.shape, &w.paths) + Scalar::DELTA;
+            radius = radius.max(r);
+            Ok(())
+        })?;
+        if radius > MAX_BODY_RADIUS {
+            return Err(invalid("a compound body larger than a body may be"));
+        }
+        listed = listed.saturating_add(n);
+    }
+    if listed != live {
+        return Err(invalid("a used shape slot is in no body's list"));
+    }
+    Ok(())
+}
+
+/// Walks the shape list of body slot `body` from slot `head`, calling `each`
+/// with each shape's index and data: every slot used and owned by the body,
+/// 1 to [`MAX_SHAPES_PER_BODY`] of them, the last followed by `NO_SHAPE` (so
+/// the list has no cycle). Returns the body's shape count.
+fn walk_list(
+    l: &Layout<'_>,
+    body: u32,
+    head: u32,
+    mut each: impl FnMut(u32, &BodyShape) -> Result<(), Error>,
+) -> Result<u32, Error> {
+    let used = l.shapes.map_or(0, |s| s.alloc.used);
+    let mut at = head;
+    let mut n = 0u32;
+    while at != NO_SHAPE {
+        if n as usize >= MAX_SHAPES_PER_BODY {
+            return Err(invalid("a shape list is cyclic or longer than 8 shapes"));
+        }
+        if at >= used {
+            return Err(invalid("a shape list names a slot the store has not used"));
+        }
+        let r = l.shape(at)?;
+        let Some(d) = r.data else { return Err(invalid("a shape list through a free slot")) };
+        if r.owner != body {
+            return Err(invalid("a shape list through another body's shape"));
+        }
+        each(n, &d)?;
+        n = n.saturating_add(1);
+        at = r.next;
+    }
+    if n == 0 {
+        return Err(invalid("a compound body without shapes"));
+    }
+    Ok(n)
+}
+
+/// The shape count of body slot `body` in a snapshot whose shapes section
+/// `check_shapes` accepted: its list's length, 1 for a body not listed.
+fn shape_count(l: &Layout<'_>, body: u32) -> Result<u32, Error> {
+    let Some(section) = l.shapes else { return Ok(1) };
+    let (mut lo, mut hi) = (0u32, section.compounds);
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        let (b, head) = l.compound(mid)?;
+        match b.cmp(&body) {
+            core::cmp::Ordering::Equal => return walk_list(l, body, head, |_, _| Ok(())),
+            core::cmp::Ordering::Less => lo = mid + 1,
+            core::cmp::Ordering::Greater => hi = mid,
+        }
+    }
+    Ok(1)
 }
 
 /// Any target list is valid: a stale or null handle never matches a body, which
@@ -173,6 +334,7 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
         let r = l.body(i)?;
         Ok((!r.live() && r.generation != 0).then(|| r.index()))
     })?;
+    check_shapes(w, l)?;
     // Generators.
     let (mut live, mut retired) = (0u32, 0u32);
     for (i, rec) in l.generators().enumerate() {
@@ -218,14 +380,17 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
             return Err(invalid("arbiters out of order"));
         }
         last = Some(key);
-        if a.link != 0 && w.paths.chains.used() == 0 {
+        if a.link() != 0 && w.paths.chains.used() == 0 {
             return Err(invalid("a chain link in a world without chains"));
         }
-        if a.link > MAX_LINK || a.steps_separated > MAX_STEPS_SEPARATED {
+        if !a.sub_is_canonical() || a.steps_separated > MAX_STEPS_SEPARATED {
             return Err(invalid("an arbiter's link or steps since separation out of range"));
         }
         if !live_body(l, a.a)? || !live_body(l, a.b)? {
             return Err(invalid("an arbiter names a body that is not in the snapshot"));
+        }
+        if a.shape_a() >= shape_count(l, a.a.index())? || a.shape_b() >= shape_count(l, a.b.index())? {
+            return Err(invalid("an arbiter names a shape its body does not have"));
         }
         let state =
             ArbiterState::from_u8(a.state & !TOUCHING).ok_or_else(|| invalid("unknown arbiter state"))?;
@@ -271,6 +436,11 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
         Ok((r.joint.is_none() && r.generation != 0).then_some(r.next))
     })?;
     Ok(())
+}
+
+/// True when body slot `i` of the snapshot is live.
+fn live_slot(l: &Layout<'_>, i: u32) -> Result<bool, Error> {
+    Ok(i < l.bodies.used && l.body(i)?.live())
 }
 
 /// True when `h` names a live body of the snapshot (same slot and generation).

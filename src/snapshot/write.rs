@@ -2,11 +2,14 @@
 
 use super::hash::Hash64;
 use super::{
-    Part, Sink, ARBITER_LINKS, ARBITER_RECORD, BODY_RECORD, BULLET, FIXED_ROTATION, HEADER, JOINT_RECORD,
-    LINK_MASK, LIVE, MAGIC, NO_LINK, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, TOUCHING, TRAILER, VERSION,
+    Part, Sink, ARBITER_LINKS, ARBITER_RECORD, BODY_RECORD, BULLET, COMPOUND_RECORD, FIXED_ROTATION, HEADER,
+    JOINT_RECORD, LINK_MASK, LIVE, MAGIC, NO_LINK, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, SHAPES, SHAPES_SHIFT,
+    SHAPE_RECORD, TOUCHING, TRAILER, VERSION,
 };
+use crate::arbiter::Arbiter;
 use crate::arena::NO_SLOT;
 use crate::body::{Body, BodyType, CollisionFilter, Shape};
+use crate::compound::{is_compound, BodyShape};
 use crate::constraint::{Joint, JointKind, MaxTorque};
 use crate::force::{Generator, Targets, MAX_TARGETS};
 use crate::geometry::PolygonPath;
@@ -72,13 +75,16 @@ pub(super) struct Plan {
     pub(super) len: usize,
     /// Entries of the properties table.
     props: u32,
+    /// Compound bodies (the shapes section is written when the shape
+    /// store has used a slot).
+    compounds: u32,
 }
 
 impl Plan {
     /// Counts; encodes nothing. Must agree with [`write`] byte for byte (a test
     /// compares it with a counting sink).
     pub(super) fn of(w: &World<'_>) -> Self {
-        let mut props = 0u32;
+        let (mut props, mut compounds) = (0u32, 0u32);
         let mut last: Option<Props> = None;
         for (_, b) in w.bodies.iter() {
             let p = Props::of(b);
@@ -86,23 +92,37 @@ impl Plan {
                 props = props.saturating_add(1);
                 last = Some(p);
             }
+            compounds = compounds.saturating_add(u32::from(is_compound(b)));
         }
         let generators = (0..w.generators.allocator_state().0)
             .map(|i| generator_bytes(w.generators.get_at(i)))
             .fold(0usize, usize::saturating_add);
         let links = if has_links(w) { w.arbiters.live().len().saturating_mul(4) } else { 0 };
+        let shapes = match w.paths.slots.allocator_state().0 {
+            0 => 0,
+            used => shapes_len(used as usize, compounds as usize),
+        };
         let len = sections_len(
             props as usize,
             w.bodies.allocator_state().0 as usize,
-            generators.saturating_add(links),
+            generators.saturating_add(links).saturating_add(shapes),
             w.arbiters.live().len(),
             w.joints.allocator_state().0 as usize,
         );
-        Self { len, props }
+        Self { len, props, compounds }
     }
 }
 
-/// Bytes of a snapshot with these counts.
+/// Bytes of a shapes section of `slots` shape slots and `compounds`
+/// compound bodies.
+fn shapes_len(slots: usize, compounds: usize) -> usize {
+    (ALLOC_BYTES + 4)
+        .saturating_add(slots.saturating_mul(SHAPE_RECORD))
+        .saturating_add(compounds.saturating_mul(COMPOUND_RECORD))
+}
+
+/// Bytes of a snapshot with these counts (`generator_bytes` includes the
+/// optional sections: the arbiters' sub-key words and the shapes).
 fn sections_len(
     props: usize,
     body_slots: usize,
@@ -126,13 +146,21 @@ fn sections_len(
 /// The longest snapshot a world with these capacities can write.
 pub(super) fn max_len(w: &World<'_>) -> usize {
     let bodies = w.bodies.capacity();
+    let shapes = w.paths.slots.capacity();
+    // A world with room for chains or compound bodies may write each
+    // arbiter's sub-key word too, and one with room for shapes the shapes
+    // section (a compound body has at least one shape slot).
+    let links =
+        if w.paths.chains.capacity() > 0 || shapes > 0 { w.arbiters.capacity().saturating_mul(4) } else { 0 };
+    let shapes = if shapes > 0 { shapes_len(shapes, shapes.min(bodies)) } else { 0 };
     sections_len(
         bodies,
         bodies,
-        // A world with room for chains may write each arbiter's link too.
-        w.generators.capacity().saturating_mul(MAX_GENERATOR_BYTES).saturating_add(
-            if w.paths.chains.capacity() > 0 { w.arbiters.capacity().saturating_mul(4) } else { 0 },
-        ),
+        w.generators
+            .capacity()
+            .saturating_mul(MAX_GENERATOR_BYTES)
+            .saturating_add(links)
+            .saturating_add(shapes),
         w.arbiters.capacity(),
         w.joints.capacity(),
     )
@@ -168,7 +196,8 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
     // The properties table: a new entry whenever a live body's properties differ
     // from the previous live body's.
     s.part(Part::Bodies);
-    s.u32(plan.props);
+    let with_shapes = w.paths.slots.allocator_state().0 > 0;
+    s.u32(plan.props | if with_shapes { SHAPES } else { 0 });
     let mut last: Option<Props> = None;
     for (_, b) in w.bodies.iter() {
         let p = Props::of(b);
@@ -217,6 +246,9 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
             }
         }
     }
+    if with_shapes {
+        write_shapes(w, plan, s);
+    }
 
     s.part(Part::Allocators);
     let (used, free_head, len) = w.generators.allocator_state();
@@ -261,7 +293,7 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
             rec.u32(h.index());
             rec.u32(h.generation());
         }
-        rec.u8(a.state as u8 | if a.touching { TOUCHING } else { 0 });
+        rec.u8(a.state as u8 | if a.is_touching() { TOUCHING } else { 0 });
         rec.u32(a.steps_separated());
         rec.u8(a.count);
         for (k, p) in a.points.iter().enumerate() {
@@ -278,7 +310,7 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
     }
     if links {
         for a in live {
-            s.u32(a.link());
+            s.u32(sub_word(a));
         }
     }
 
@@ -307,10 +339,62 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
     }
 }
 
-/// True when an arbiter is for a chain link other than 0 (the links are
-/// then written after the arbiter records).
+/// The shapes section: the shape store's allocator state and slots, then
+/// each compound body's slot and first shape slot.
+fn write_shapes(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
+    let slots = &w.paths.slots;
+    s.part(Part::Allocators);
+    let (used, free_head, len) = slots.allocator_state();
+    s.u32(used);
+    s.u32(link(free_head));
+    s.u32(len);
+    for i in 0..used {
+        let (generation, next_free) = slots.slot_meta(i).unwrap_or((0, NO_SLOT));
+        let mut rec = Record::<SHAPE_RECORD>::default();
+        rec.u32(generation);
+        match slots.get_at(i) {
+            Some(slot) => {
+                rec.u32(LIVE);
+                rec.u32(slot.owner);
+                rec.u32(slot.next);
+                write_body_shape(&mut rec, &slot.data);
+            }
+            None => rec.u32(link(next_free)),
+        }
+        let (meta, shape) = rec.bytes.split_at(8);
+        s.part(Part::Allocators);
+        s.put(meta);
+        s.part(Part::Bodies);
+        s.put(shape);
+    }
+    s.u32(plan.compounds);
+    for (h, b) in w.bodies.iter().filter(|(_, b)| is_compound(b)) {
+        s.u32(h.index());
+        s.u32(b.shapes);
+    }
+}
+
+fn write_body_shape(s: &mut impl Sink, d: &BodyShape) {
+    write_shape(s, d.shape);
+    s.vector(d.local.p);
+    s.rot(d.local.q);
+    s.scalar(d.mass);
+    s.scalar(d.inertia);
+    s.scalar(d.friction);
+    s.scalar(d.restitution);
+    write_filter(s, &d.filter);
+    s.bool(d.sensor);
+}
+
+/// True when an arbiter is for a chain link or a shape other than 0 (the
+/// sub-key words are then written after the arbiter records).
 fn has_links(w: &World<'_>) -> bool {
-    w.arbiters.live().iter().any(|a| a.link() != 0)
+    w.arbiters.live().iter().any(|a| sub_word(a) != 0)
+}
+
+/// An arbiter's sub-key word as stored (see [`ARBITER_LINKS`]).
+fn sub_word(a: &Arbiter) -> u32 {
+    a.link() | (a.shape_a() << SHAPES_SHIFT) | (a.shape_b() << (SHAPES_SHIFT + 3))
 }
 
 /// A free-list link in the 30-bit form.
@@ -334,10 +418,10 @@ pub(super) fn write_def(s: &mut impl Sink, d: &WorldDef) {
     s.u32(d.arbiter_persistence);
 }
 
+/// The shape kind and the 24-byte shape field, zero-padded.
 #[inline]
-fn write_props(s: &mut impl Sink, p: &Props) {
-    // The shape field is 24 bytes, zero-padded.
-    match p.shape {
+fn write_shape(s: &mut impl Sink, shape: Shape) {
+    match shape {
         Shape::Circle { radius } => {
             s.u8(0);
             s.scalar(radius);
@@ -370,6 +454,17 @@ fn write_props(s: &mut impl Sink, p: &Props) {
             s.u64(0);
         }
     }
+}
+
+fn write_filter(s: &mut impl Sink, f: &CollisionFilter) {
+    s.u64(f.category_bits);
+    s.u64(f.mask_bits);
+    s.u32(f.group_index as u32);
+}
+
+#[inline]
+fn write_props(s: &mut impl Sink, p: &Props) {
+    write_shape(s, p.shape);
     let fixed = if p.fixed_rotation { FIXED_ROTATION } else { 0 };
     let sensor = if p.sensor { SENSOR } else { 0 };
     s.u8(p.body_type as u8 | if p.bullet { BULLET } else { 0 } | sensor | fixed);
@@ -383,9 +478,7 @@ fn write_props(s: &mut impl Sink, p: &Props) {
     s.scalar(p.linear_damping);
     s.scalar(p.angular_damping);
     s.scalar(p.gravity_scale);
-    s.u64(p.filter.category_bits);
-    s.u64(p.filter.mask_bits);
-    s.u32(p.filter.group_index as u32);
+    write_filter(s, &p.filter);
 }
 
 fn write_targets(s: &mut impl Sink, t: &Targets) {

@@ -44,7 +44,10 @@ impl World<'_> {
         if !self.paths.contains(h) {
             return Err(Error::StaleHandle);
         }
-        if self.bodies.iter().any(|(_, b)| b.shape == Shape::Polygon(h)) {
+        let used = |s: &Shape| *s == Shape::Polygon(h);
+        if self.bodies.iter().any(|(_, b)| used(&b.shape))
+            || self.paths.slots.iter().any(|(_, s)| used(&s.data.shape))
+        {
             return Err(Error::InvalidOperation { what: "remove a path that bodies use" });
         }
         self.paths.remove(h).ok_or(Error::StaleHandle)
@@ -128,6 +131,8 @@ impl World<'_> {
             filter: def.filter,
             sensor: def.sensor,
             radius,
+            shapes: crate::compound::NO_SHAPE,
+            shape_count: 1,
             aabb: Rect::default(),
             force_dv: Vector2::ZERO,
             force_dw: ZERO,
@@ -138,7 +143,7 @@ impl World<'_> {
 
     /// Area (m²), unit moment of inertia (m⁴, per kg/m²) and bounding radius
     /// (m) of a shape, checked against the size limits.
-    fn shape_geometry(&self, shape: Shape) -> Result<(Scalar, Scalar, Scalar), Error> {
+    pub(super) fn shape_geometry(&self, shape: Shape) -> Result<(Scalar, Scalar, Scalar), Error> {
         match shape {
             Shape::Circle { radius } => {
                 if radius <= ZERO || radius > MAX_BODY_RADIUS {
@@ -203,10 +208,13 @@ impl World<'_> {
         if !self.bodies.contains(h) {
             return Err(Error::StaleHandle);
         }
-        let World { bodies, arbiters, handlers, post_step, .. } = self;
-        collision::end_arbiters_of(h.index(), bodies, arbiters, handlers, post_step);
+        let World { bodies, paths, arbiters, handlers, post_step, .. } = self;
+        collision::end_arbiters_of(h.index(), bodies, paths, arbiters, handlers, post_step);
         self.remove_joints_of(h);
         let body = self.bodies.remove(h).ok_or(Error::StaleHandle);
+        if let Ok(b) = &body {
+            self.free_shapes_of(b.shapes);
+        }
         self.drain_post_step_outside_step();
         body
     }
@@ -342,7 +350,11 @@ impl World<'_> {
     /// outside its range (a mass of 0 included: use `set_static`). The world is
     /// unchanged on error.
     pub fn set_dynamic(&mut self, h: BodyHandle, mass: MassSpec) -> Result<(), Error> {
-        let shape = self.bodies.get(h).ok_or(Error::StaleHandle)?.shape;
+        let body = self.bodies.get(h).ok_or(Error::StaleHandle)?;
+        if crate::compound::is_compound(body) {
+            return self.set_compound_mass(h, mass);
+        }
+        let shape = body.shape;
         let (area, unit_inertia, _) = self.shape_geometry(shape)?;
         let mass = dynamic_mass(shape, mass, area, unit_inertia)?;
         let b = self.bodies.get_mut(h).ok_or(Error::StaleHandle)?;
@@ -368,23 +380,26 @@ impl World<'_> {
     /// Sets a body's friction coefficient, [0, [`MAX_FRICTION`](crate::limits::MAX_FRICTION)].
     /// Existing contacts keep the friction they were created with (change
     /// those with [`Arbiter::set_friction`](crate::Arbiter::set_friction)); new ones use it.
+    /// On a compound body it sets every shape's.
     ///
     /// # Errors
     /// [`Error::StaleHandle`], [`Error::OutOfRange`]; the world is unchanged on error.
     pub fn set_friction(&mut self, h: BodyHandle, mu: Scalar) -> Result<(), Error> {
         check_friction(mu)?;
         self.bodies.get_mut(h).ok_or(Error::StaleHandle)?.friction = mu;
+        self.each_shape_mut(h, |s| s.friction = mu);
         Ok(())
     }
 
     /// Sets a body's restitution, [0, 1]; like friction, it applies to contacts
-    /// that begin after the change.
+    /// that begin after the change (on a compound body, to every shape).
     ///
     /// # Errors
     /// [`Error::StaleHandle`], [`Error::OutOfRange`]; the world is unchanged on error.
     pub fn set_restitution(&mut self, h: BodyHandle, e: Scalar) -> Result<(), Error> {
         check_restitution(e)?;
         self.bodies.get_mut(h).ok_or(Error::StaleHandle)?.restitution = e;
+        self.each_shape_mut(h, |s| s.restitution = e);
         Ok(())
     }
 
@@ -438,12 +453,14 @@ impl World<'_> {
 
     /// Sets a body's Box2D collision filter (see [`CollisionFilter`]). Pairs it
     /// no longer collides with stop from the next step: their arbiters separate
-    /// and end as any separated pair does (no push in between).
+    /// and end as any separated pair does (no push in between). On a compound
+    /// body it sets every shape's.
     ///
     /// # Errors
     /// [`Error::StaleHandle`].
     pub fn set_filter(&mut self, h: BodyHandle, filter: CollisionFilter) -> Result<(), Error> {
         self.bodies.get_mut(h).ok_or(Error::StaleHandle)?.filter = filter;
+        self.each_shape_mut(h, |s| s.filter = filter);
         Ok(())
     }
 
@@ -578,7 +595,12 @@ mod tests {
 /// The mass data of a dynamic body of `shape` (its `area` and `unit_inertia`
 /// from [`World::shape_geometry`]). A segment has no area: it takes a mass
 /// outright, as a thin rod (its "area" is 1 and its unit inertia L²/12 per kg).
-fn dynamic_mass(shape: Shape, spec: MassSpec, area: Scalar, unit_inertia: Scalar) -> Result<MassData, Error> {
+pub(super) fn dynamic_mass(
+    shape: Shape,
+    spec: MassSpec,
+    area: Scalar,
+    unit_inertia: Scalar,
+) -> Result<MassData, Error> {
     match (shape, spec) {
         (Shape::Segment(_), MassSpec::Density(_)) => {
             Err(Error::InvalidOperation { what: "a segment has no area: give a dynamic segment a mass" })

@@ -22,6 +22,7 @@ pub mod def;
 mod joints;
 #[cfg(feature = "std")]
 mod panic_guard;
+mod shapes;
 mod stats;
 pub mod storage;
 
@@ -141,6 +142,7 @@ impl<'a> World<'a> {
             post_step_callbacks: s.post_step.len(),
             events: 0,
             chain_vertices: s.chain_nodes.len(),
+            shapes: s.shape_slots.len(),
         };
         let events = Events::new(
             s.contact_begin,
@@ -157,6 +159,7 @@ impl<'a> World<'a> {
             paths: ShapeStore {
                 paths: Arena::new(s.paths).with_tag(tag),
                 chains: ChainSlab::new(s.chain_nodes),
+                slots: Arena::new(s.shape_slots).with_tag(tag),
             },
             generators: Arena::inline().with_tag(tag),
             broad_phase: BroadPhase {

@@ -10,6 +10,7 @@ use managed::ManagedSlice;
 use crate::arbiter::Arbiter;
 use crate::arena::Slot;
 use crate::body::{Body, BodyHandle};
+use crate::compound::ShapeSlot;
 use crate::constraint::{Joint, JointRow};
 #[cfg(feature = "alloc")]
 use crate::error::Error;
@@ -49,6 +50,11 @@ pub struct Capacities {
     /// (48) bytes each (the point and one box of its link tree). 0 in
     /// [`Capacities::for_bodies`]: a world that uses chains sets it.
     pub chain_vertices: usize,
+    /// Shapes of compound bodies ([`World::add_shape`](crate::World::add_shape)):
+    /// a body with `n` > 1 shapes takes `n` (its first shape moves here too),
+    /// [`Storage::BYTES_PER_SHAPE`] bytes each; a one-shape body takes none.
+    /// 0 in [`Capacities::for_bodies`]: a world that uses compound bodies sets it.
+    pub shapes: usize,
 }
 
 impl Default for Capacities {
@@ -64,7 +70,8 @@ impl Capacities {
     /// contact, [`Storage::BYTES_PER_JOINT`] per joint,
     /// [`Storage::BYTES_PER_CALLBACK`] per queued callback,
     /// [`Storage::BYTES_PER_EVENT`] per event,
-    /// [`Storage::BYTES_PER_CHAIN_VERTEX`] per chain point; saturating.
+    /// [`Storage::BYTES_PER_CHAIN_VERTEX`] per chain point,
+    /// [`Storage::BYTES_PER_SHAPE`] per compound-body shape; saturating.
     #[must_use]
     pub const fn storage_bytes(&self) -> usize {
         match self.checked_storage_bytes() {
@@ -84,6 +91,7 @@ impl Capacities {
             self.post_step_callbacks.checked_mul(Storage::BYTES_PER_CALLBACK),
             self.events.checked_mul(Storage::BYTES_PER_EVENT),
             self.chain_vertices.checked_mul(Storage::BYTES_PER_CHAIN_VERTEX),
+            self.shapes.checked_mul(Storage::BYTES_PER_SHAPE),
         ];
         let mut total = 0usize;
         let mut i = 0;
@@ -113,6 +121,7 @@ impl Capacities {
             post_step_callbacks: bodies.max(DEFAULT_POST_STEP_CALLBACKS),
             events: bodies.max(DEFAULT_EVENTS),
             chain_vertices: 0,
+            shapes: 0,
         }
     }
 }
@@ -165,6 +174,8 @@ pub struct Storage<'a> {
     pub(crate) joint_broke: ManagedSlice<'a, JointBrokeEvent>,
     /// The chain slab; its length is the chain-point capacity.
     pub(crate) chain_nodes: ManagedSlice<'a, ChainNode>,
+    /// The shape store's slots; its length is the shape capacity.
+    pub(crate) shape_slots: ManagedSlice<'a, Slot<ShapeSlot>>,
 }
 
 impl Storage<'_> {
@@ -180,6 +191,8 @@ impl Storage<'_> {
     /// Bytes per chain point: the point and one box of the chain's link tree
     /// (a chain of `n` links costs about `n` of these).
     pub const BYTES_PER_CHAIN_VERTEX: usize = size_of::<ChainNode>();
+    /// Bytes per compound-body shape slot.
+    pub const BYTES_PER_SHAPE: usize = size_of::<Slot<ShapeSlot>>();
     /// Bytes per polygon path slot.
     pub const BYTES_PER_PATH: usize = size_of::<Slot<PolygonPath>>();
     /// Bytes per contact slot: two arbiters (this step's and the next's), a
@@ -261,21 +274,31 @@ impl Storage<'_> {
             sensor_end: ManagedSlice::Owned(filled(c.events, "event", SensorEvent::default)?),
             joint_broke: ManagedSlice::Owned(filled(c.events, "event", JointBrokeEvent::default)?),
             chain_nodes: ManagedSlice::Owned(filled(c.chain_vertices, "chain vertex", || ChainNode::EMPTY)?),
+            shape_slots: ManagedSlice::Owned(filled(c.shapes, "shape", || Slot::EMPTY)?),
         })
     }
 }
 
-const EMPTY_BEGIN: ContactBeginEvent =
-    ContactBeginEvent { body_a: BodyHandle::NULL, body_b: BodyHandle::NULL, normal: Vector2::ZERO };
-const EMPTY_END: ContactEndEvent = ContactEndEvent { body_a: BodyHandle::NULL, body_b: BodyHandle::NULL };
+const EMPTY_BEGIN: ContactBeginEvent = ContactBeginEvent {
+    body_a: BodyHandle::NULL,
+    body_b: BodyHandle::NULL,
+    normal: Vector2::ZERO,
+    shape_a: 0,
+    shape_b: 0,
+};
+const EMPTY_END: ContactEndEvent =
+    ContactEndEvent { body_a: BodyHandle::NULL, body_b: BodyHandle::NULL, shape_a: 0, shape_b: 0 };
 const EMPTY_HIT: ContactHitEvent = ContactHitEvent {
     body_a: BodyHandle::NULL,
     body_b: BodyHandle::NULL,
     point: Vector2::ZERO,
     normal: Vector2::ZERO,
     speed: crate::math::scalar::ZERO,
+    shape_a: 0,
+    shape_b: 0,
 };
-const EMPTY_SENSOR: SensorEvent = SensorEvent { sensor: BodyHandle::NULL, visitor: BodyHandle::NULL };
+const EMPTY_SENSOR: SensorEvent =
+    SensorEvent { sensor: BodyHandle::NULL, visitor: BodyHandle::NULL, sensor_shape: 0, visitor_shape: 0 };
 
 /// Statically sized buffers for a world that needs no allocator: `BODIES` bodies
 /// and as many polygon paths, `CONTACTS` candidate pairs and arbiters (a
@@ -284,7 +307,8 @@ const EMPTY_SENSOR: SensorEvent = SensorEvent { sensor: BodyHandle::NULL, visito
 /// (default [`DEFAULT_POST_STEP_CALLBACKS`], 64), `EVENTS` events of each kind
 /// a step reports (default [`DEFAULT_EVENTS`], 64; see [`crate::events`]),
 /// `CHAIN_VERTICES` chain points (default 0; see
-/// [`World::add_chain`](crate::World::add_chain)). `new` is `const`, so the
+/// [`World::add_chain`](crate::World::add_chain)), `SHAPES` shapes of compound
+/// bodies (default 0; see [`World::add_shape`](crate::World::add_shape)). `new` is `const`, so the
 /// buffers can be a `static` (e.g. in a `static_cell::StaticCell`) or a local.
 pub struct WorldBuffers<
     const BODIES: usize,
@@ -293,6 +317,7 @@ pub struct WorldBuffers<
     const CALLBACKS: usize = DEFAULT_POST_STEP_CALLBACKS,
     const EVENTS: usize = DEFAULT_EVENTS,
     const CHAIN_VERTICES: usize = 0,
+    const SHAPES: usize = 0,
 > {
     bodies: [Slot<Body>; BODIES],
     paths: [Slot<PolygonPath>; BODIES],
@@ -317,6 +342,7 @@ pub struct WorldBuffers<
     sensor_end: [SensorEvent; EVENTS],
     joint_broke: [JointBrokeEvent; EVENTS],
     chain_nodes: [ChainNode; CHAIN_VERTICES],
+    shape_slots: [Slot<ShapeSlot>; SHAPES],
 }
 
 impl<
@@ -326,7 +352,8 @@ impl<
         const CALLBACKS: usize,
         const EVENTS: usize,
         const CHAIN_VERTICES: usize,
-    > WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS, EVENTS, CHAIN_VERTICES>
+        const SHAPES: usize,
+    > WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS, EVENTS, CHAIN_VERTICES, SHAPES>
 {
     /// Empty buffers.
     ///
@@ -360,6 +387,7 @@ impl<
             sensor_end: [EMPTY_SENSOR; EVENTS],
             joint_broke: [JointBrokeEvent::EMPTY; EVENTS],
             chain_nodes: [ChainNode::EMPTY; CHAIN_VERTICES],
+            shape_slots: [Slot::EMPTY; SHAPES],
         }
     }
 
@@ -389,6 +417,7 @@ impl<
             sensor_end: ManagedSlice::Borrowed(&mut self.sensor_end[..]),
             joint_broke: ManagedSlice::Borrowed(&mut self.joint_broke[..]),
             chain_nodes: ManagedSlice::Borrowed(&mut self.chain_nodes[..]),
+            shape_slots: ManagedSlice::Borrowed(&mut self.shape_slots[..]),
         }
     }
 }
@@ -400,7 +429,8 @@ impl<
         const CALLBACKS: usize,
         const EVENTS: usize,
         const CHAIN_VERTICES: usize,
-    > Default for WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS, EVENTS, CHAIN_VERTICES>
+        const SHAPES: usize,
+    > Default for WorldBuffers<BODIES, CONTACTS, JOINTS, CALLBACKS, EVENTS, CHAIN_VERTICES, SHAPES>
 {
     fn default() -> Self {
         Self::new()

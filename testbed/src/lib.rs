@@ -572,72 +572,77 @@ impl Testbed {
         let held = self.drag.map(|d| d.body);
         let w = self.running.world();
         for (h, b) in w.bodies() {
-            let xf = b.transform();
-            let (x, y) = b.position().to_f32();
-            let mut flags = 0u32;
-            if b.is_static() {
-                flags |= 1;
-            } else if !b.is_dynamic() {
-                flags |= 2;
-            }
-            if held == Some(h) {
-                flags |= 4;
-            }
-            if b.is_sensor() {
-                flags |= 8;
-            }
-            if b.is_out_of_bounds() {
-                flags |= 16;
-            }
-            let mut rec = [0f32; DRAW_STRIDE];
-            rec[1] = flags as f32;
-            rec[2] = x;
-            rec[3] = y;
-            rec[4] = b.angle().to_num::<f32>();
-            let points = |pts: &mut dyn Iterator<Item = Vector2>, rec: &mut [f32; DRAW_STRIDE]| {
-                let mut n = 0;
-                for (k, p) in pts.take(8).enumerate() {
-                    let (px, py) = xf.apply(p).to_f32();
-                    rec[8 + 2 * k] = px;
-                    rec[9 + 2 * k] = py;
-                    n = k + 1;
+            // A record per shape (a compound body has several, each placed on the body).
+            let shapes: Vec<(Shape, arphysics::Transform)> =
+                w.shapes(h).map(|it| it.map(|(_, s)| (s.shape, s.local)).collect()).unwrap_or_default();
+            for (shape, local) in shapes {
+                let xf = b.transform().compose(local);
+                let (x, y) = xf.p.to_f32();
+                let mut flags = 0u32;
+                if b.is_static() {
+                    flags |= 1;
+                } else if !b.is_dynamic() {
+                    flags |= 2;
                 }
-                rec[6] = n as f32;
-            };
-            match b.shape() {
-                Shape::Circle { radius } => {
-                    rec[0] = 0.0;
-                    rec[5] = radius.to_num::<f32>();
+                if held == Some(h) {
+                    flags |= 4;
                 }
-                Shape::Polygon(p) => {
-                    rec[0] = 1.0;
-                    if let Ok(path) = w.path(p) {
-                        rec[5] = path.rounding().to_num::<f32>();
-                        points(&mut path.vertices().iter().copied(), &mut rec);
+                if b.is_sensor() {
+                    flags |= 8;
+                }
+                if b.is_out_of_bounds() {
+                    flags |= 16;
+                }
+                let mut rec = [0f32; DRAW_STRIDE];
+                rec[1] = flags as f32;
+                rec[2] = x;
+                rec[3] = y;
+                rec[4] = xf.q.angle().to_num::<f32>();
+                let points = |pts: &mut dyn Iterator<Item = Vector2>, rec: &mut [f32; DRAW_STRIDE]| {
+                    let mut n = 0;
+                    for (k, p) in pts.take(8).enumerate() {
+                        let (px, py) = xf.apply(p).to_f32();
+                        rec[8 + 2 * k] = px;
+                        rec[9 + 2 * k] = py;
+                        n = k + 1;
+                    }
+                    rec[6] = n as f32;
+                };
+                match shape {
+                    Shape::Circle { radius } => {
+                        rec[0] = 0.0;
+                        rec[5] = radius.to_num::<f32>();
+                    }
+                    Shape::Polygon(p) => {
+                        rec[0] = 1.0;
+                        if let Ok(path) = w.path(p) {
+                            rec[5] = path.rounding().to_num::<f32>();
+                            points(&mut path.vertices().iter().copied(), &mut rec);
+                        }
+                    }
+                    Shape::Capsule(c) => {
+                        rec[0] = 2.0;
+                        rec[5] = c.radius().to_num::<f32>();
+                        points(&mut [c.center1(), c.center2()].into_iter(), &mut rec);
+                    }
+                    Shape::Segment(s) => {
+                        rec[0] = 3.0;
+                        points(&mut [s.point1(), s.point2()].into_iter(), &mut rec);
+                    }
+                    // A chain: one segment record per link.
+                    Shape::Chain(c) => {
+                        rec[0] = 3.0;
+                        for i in 0..c.links() as u32 {
+                            let Some(link) = w.chain_link(c, i) else { break };
+                            let sg = link.segment();
+                            points(&mut [sg.point1(), sg.point2()].into_iter(), &mut rec);
+                            out.extend_from_slice(&rec);
+                        }
+                        continue;
                     }
                 }
-                Shape::Capsule(c) => {
-                    rec[0] = 2.0;
-                    rec[5] = c.radius().to_num::<f32>();
-                    points(&mut [c.center1(), c.center2()].into_iter(), &mut rec);
-                }
-                Shape::Segment(s) => {
-                    rec[0] = 3.0;
-                    points(&mut [s.point1(), s.point2()].into_iter(), &mut rec);
-                }
-                // A chain: one segment record per link.
-                Shape::Chain(c) => {
-                    rec[0] = 3.0;
-                    for i in 0..c.links() as u32 {
-                        let Some(link) = w.chain_link(c, i) else { break };
-                        let sg = link.segment();
-                        points(&mut [sg.point1(), sg.point2()].into_iter(), &mut rec);
-                        out.extend_from_slice(&rec);
-                    }
-                    continue;
-                }
+                out.extend_from_slice(&rec);
             }
-            out.extend_from_slice(&rec);
         }
         // Joints, kind 5: a line between the anchors (world points); the drag's
         // own is drawn last, as kind 4.

@@ -198,6 +198,7 @@ fn shapes() -> Result<World<'static>, Error> {
         post_step_callbacks: 64,
         events: 64,
         chain_vertices: 0,
+        shapes: 8,
     };
     let mut w = crate::scene_world(bounds, caps)?;
     w.add_force_generator(GravityForceGenerator::new(Vector2::from_int(0, -10)))?;
@@ -223,6 +224,8 @@ fn shapes() -> Result<World<'static>, Error> {
         at(-25, -43),
         at(25, -43),
     ])?)?;
+    // Compound bodies (an L, a hammer, a dumbbell) dropped onto the pins.
+    demo::add_compound_toys(&mut w, -450, 450)?;
     // A row of standing capsules (pins) on the floor.
     for k in 0..6 {
         let pin = Capsule::new(at(0, -40), at(0, 40), cm(15))?;

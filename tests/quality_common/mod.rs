@@ -34,6 +34,7 @@ pub fn world_with_contacts(bodies: usize, contacts: usize, gravity: bool) -> Wor
             post_step_callbacks: 64,
             events: 64,
             chain_vertices: 0,
+            shapes: 0,
         },
     )
     .expect("world");

@@ -109,6 +109,7 @@ pub mod ar {
             post_step_callbacks: 64,
             events: 64,
             chain_vertices: 0,
+            shapes: 0,
         }
     }
 
