@@ -9,7 +9,9 @@
 
 mod golden_scenes;
 
-use golden_scenes::{Outcome, GOLDEN_CORE_SCENE, GOLDEN_LONG, GOLDEN_MIXED, GOLDEN_PYRAMID, GOLDEN_SHAPES};
+use golden_scenes::{
+    Outcome, GOLDEN_COMPOUND, GOLDEN_CORE_SCENE, GOLDEN_LONG, GOLDEN_MIXED, GOLDEN_PYRAMID, GOLDEN_SHAPES,
+};
 
 fn report(name: &str, steps: u32, out: &Outcome) {
     println!("{name} hash after {steps} steps: {:#018x} ({out:?})", out.hash);
@@ -48,4 +50,11 @@ fn every_shape_scene_hash_is_the_committed_constant() {
     let out = golden_scenes::shapes().expect("every-shape scene");
     report("every-shape scene", golden_scenes::SHAPES_STEPS, &out);
     assert_eq!(out.hash, GOLDEN_SHAPES);
+}
+
+#[test]
+fn compound_body_scene_hash_is_the_committed_constant() {
+    let out = golden_scenes::compound().expect("compound-body scene");
+    report("compound-body scene", golden_scenes::COMPOUND_STEPS, &out);
+    assert_eq!(out.hash, GOLDEN_COMPOUND);
 }

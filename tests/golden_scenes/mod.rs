@@ -16,8 +16,8 @@
 use arphysics::{
     Arbiter, BodyDef, BodyHandle, CallbackContext, Capsule, ChainPath, Error, FnHandler,
     GravityForceGenerator, GravityToPointForceGenerator, Joint, JointDef, JointHandle, JointKind,
-    LinearForceGenerator, MaxTorque, Motor, PathHandle, PolygonPath, Rect, Scalar, Segment, StepReport,
-    Targets, Vector2, World, WorldBuffers, WorldDef,
+    LinearForceGenerator, MaxTorque, Motor, PathHandle, PolygonPath, Rect, Scalar, Segment, ShapeDef,
+    StepReport, Targets, Vector2, World, WorldBuffers, WorldDef,
 };
 
 /// Committed golden hashes, identical in debug and release on every target. A
@@ -31,6 +31,8 @@ pub const GOLDEN_MIXED: u64 = 0x34db_5832_2d28_135e;
 pub const GOLDEN_LONG: u64 = 0x32c0_7710_8c24_8fc0;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_SHAPES: u64 = 0x3beb_d851_b68b_9a45;
+/// See [`GOLDEN_CORE_SCENE`].
+pub const GOLDEN_COMPOUND: u64 = 0x27db_ea67_c1c6_25da;
 
 /// Steps of the core scene.
 pub const CORE_STEPS: u32 = 600;
@@ -274,6 +276,59 @@ pub fn shapes() -> Result<Outcome, SceneError> {
     for h in capsules {
         let p = w.body(h)?.position();
         check(p.y > Scalar::ZERO && p.y < q(8, 1), "the capsules come to rest in the valley")?;
+    }
+    Ok(out)
+}
+
+// ---- compound bodies -------------------------------------------------------------
+
+/// Steps of the compound-body scene.
+pub const COMPOUND_STEPS: u32 = 480;
+
+/// Compound bodies (several shapes on one body, issue 19): an L of two boxes,
+/// a hammer (a dense box head on a capsule handle), a dumbbell (two balls on a
+/// capsule bar, turned), a cart with a sensor probe and a shape that filters the
+/// floor out, and a few one-shape bodies, dropped into a chain valley; a shape
+/// is removed from the dumbbell halfway. 480 steps.
+pub fn compound() -> Result<Outcome, SceneError> {
+    let mut buffers = WorldBuffers::<24, 128, 1, 64, 64, 4, 16>::new();
+    let bounds = Rect::from_corners(v(-30, -10), v(30, 40));
+    let mut w = World::new(WorldDef::with_bounds(bounds), buffers.storage())?;
+    // A valley: a chain walked right to left (fronts up).
+    let floor = w.add_chain(ChainPath::open(&[v(14, 6), v(6, 0), v(-6, 0), v(-14, 6)])?)?;
+    w.add_body(BodyDef::chain(floor))?;
+    let arm = w.add_path(PolygonPath::rectangle(q(2, 1), q(1, 5))?)?;
+    let leg = w.add_path(PolygonPath::rectangle(q(1, 5), q(3, 2))?)?;
+    let head = w.add_path(PolygonPath::rounded_rectangle(q(2, 5), q(4, 5), q(1, 10))?)?;
+    let square = w.add_path(PolygonPath::rectangle(q(1, 1), q(1, 1))?)?;
+    let l = w.add_body(BodyDef::polygon(arm).position(v(-4, 4)).angle(q(1, 5)))?;
+    w.add_shape(l, ShapeDef::polygon(leg).offset(vq(-9, 8, 10)))?;
+    let handle = Capsule::new(vq(-7, 0, 10), vq(7, 0, 10), q(1, 10))?;
+    let hammer = w.add_body(BodyDef::capsule(handle).position(v(0, 6)).angle(q(-2, 5)))?;
+    w.add_shape(hammer, ShapeDef::polygon(head).offset(vq(9, 0, 10)).density(q(8, 1)))?;
+    let bar = Capsule::new(vq(-3, 0, 5), vq(3, 0, 5), q(1, 10))?;
+    let dumbbell = w.add_body(BodyDef::capsule(bar).position(v(4, 9)).angular_velocity(q(3, 1)))?;
+    for side in [-1, 1] {
+        w.add_shape(dumbbell, ShapeDef::circle(q(3, 10)).offset(vq(side * 3, 0, 4)).restitution(q(1, 2)))?;
+    }
+    let cart = w.add_body(BodyDef::polygon(square).position(v(-2, 12)).linear_velocity(v(2, 0)))?;
+    w.add_shape(cart, ShapeDef::circle(q(1, 5)).offset(vq(0, -7, 10)).sensor())?;
+    let ghost = arphysics::CollisionFilter { category_bits: 2, mask_bits: !1, group_index: 0 };
+    w.add_shape(cart, ShapeDef::circle(q(2, 5)).offset(vq(1, -3, 10)).filter(ghost))?;
+    for i in 0..4 {
+        w.add_body(BodyDef::circle(q(2, 5)).position(Vector2::new(q(-5 + 3 * i, 1), q(15, 1))))?;
+    }
+    w.add_force_generator(GravityForceGenerator::new(v(0, -10)))?;
+    let mut total = StepReport::default();
+    step_n(&mut w, COMPOUND_STEPS / 2, &mut total)?;
+    w.remove_shape(dumbbell, 2)?;
+    step_n(&mut w, COMPOUND_STEPS / 2, &mut total)?;
+    let out = outcome(&w, &total);
+    check(out.left_bounds == 0, "nothing leaves the valley")?;
+    check(w.body(dumbbell)?.shape_count() == 2, "the dumbbell lost a ball")?;
+    for h in [l, hammer, dumbbell, cart] {
+        let p = w.body(h)?.position();
+        check(p.y > Scalar::ZERO && p.y < q(8, 1), "the compound bodies come to rest in the valley")?;
     }
     Ok(out)
 }
