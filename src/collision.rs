@@ -336,6 +336,7 @@ pub(crate) fn update_arbiters(
     // the next overwrites it.
     let (mut j, mut out, mut skipped) = (0usize, 0usize, 0usize);
     let mut keys = CandidateKeys::new(candidates, bodies, paths);
+    let mut pass = PairPass { ctx, bodies, paths, handlers, post_step, events };
     loop {
         let (cand, old) = (keys.peek(), live.get(j));
         let (key, candidate, previous) = match (cand, old) {
@@ -357,7 +358,7 @@ pub(crate) fn update_arbiters(
         let Some(arb) = next.get_mut(out) else {
             skipped = skipped.saturating_add(1);
             if let Some(p) = previous {
-                end_dropped(p, bodies, paths, handlers, post_step, events);
+                end_dropped(p, bodies, paths, pass.handlers, pass.post_step, pass.events);
             }
             continue;
         };
@@ -369,36 +370,12 @@ pub(crate) fn update_arbiters(
         let link = key_link(key);
         let keep = if !is_compound(ba) && !is_compound(bb) {
             // One shape each: the bodies' own data (the common case).
-            let (x, y) = ((ha, ba, ba, 0), (hb, bb, bb, 0));
-            update_pair(
-                ctx,
-                (link, candidate, previous),
-                arb,
-                x,
-                y,
-                bodies,
-                paths,
-                handlers,
-                post_step,
-                events,
-            )
+            update_pair(&mut pass, (link, candidate, previous), arb, (ha, ba, ba, 0), (hb, bb, bb, 0))
         } else {
             // The key's shapes: the lower slot's, then the higher's.
             let (lo, hi) = ((key.2 >> 3) & MAX_SHAPE_INDEX, key.2 & MAX_SHAPE_INDEX);
             let (Some(sx), Some(sy)) = (shape_of(ba, lo, paths), shape_of(bb, hi, paths)) else { continue };
-            let (x, y) = ((ha, ba, &sx, lo), (hb, bb, &sy, hi));
-            update_pair(
-                ctx,
-                (link, candidate, previous),
-                arb,
-                x,
-                y,
-                bodies,
-                paths,
-                handlers,
-                post_step,
-                events,
-            )
+            update_pair(&mut pass, (link, candidate, previous), arb, (ha, ba, &sx, lo), (hb, bb, &sy, hi))
         };
         if keep {
             out = out.saturating_add(1);
@@ -408,25 +385,30 @@ pub(crate) fn update_arbiters(
     skipped
 }
 
+/// What [`update_pair`] works with, besides the pair.
+struct PairPass<'p, 'b, 's, 'h, 'q, 'e> {
+    ctx: &'p StepContext,
+    bodies: &'p Arena<'b, Body>,
+    paths: &'p ShapeStore<'s>,
+    handlers: &'p mut HandlerTable<'h>,
+    post_step: &'p mut PostStepQueue<'q>,
+    events: &'p mut Events<'e>,
+}
+
 /// One key's arbiter for this step, written into `arb`: shape `x.2` (index
 /// `x.3`) of body `x.1` and shape `y.2` of body `y.1`, lower slot first,
 /// for the chain link `key.0`, `key.1` whether the key is a candidate and
 /// `key.2` the arbiter it had (see [`update_arbiters`]). Returns whether to
 /// keep it.
-#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn update_pair<S: ShapeData>(
-    ctx: &StepContext,
+    pass: &mut PairPass<'_, '_, '_, '_, '_, '_>,
     (link, candidate, previous): (u32, bool, Option<&Arbiter>),
     arb: &mut Arbiter,
     x: (BodyHandle, &Body, &S, u32),
     y: (BodyHandle, &Body, &S, u32),
-    bodies: &Arena<'_, Body>,
-    paths: &ShapeStore<'_>,
-    handlers: &mut HandlerTable<'_>,
-    post_step: &mut PostStepQueue<'_>,
-    events: &mut Events<'_>,
 ) -> bool {
+    let PairPass { ctx, bodies, paths, handlers, post_step, events } = pass;
     let (ha, ba, sx) = (x.0, x.1, x.2);
     let (bb, sy) = (y.1, y.2);
     pair_arbiter(x, y, link, previous, arb);

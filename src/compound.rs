@@ -275,24 +275,32 @@ pub(crate) trait ShapeData {
     fn place(&self, body: Transform) -> Transform;
 }
 
+/// The accessors of [`ShapeData`] for a type whose fields carry the same
+/// names (`shape`, `filter`, `sensor`, `friction`, `restitution`).
+macro_rules! shape_fields {
+    () => {
+        #[inline(always)]
+        fn geometry(&self) -> &Shape {
+            &self.shape
+        }
+        #[inline(always)]
+        fn filters(&self) -> &CollisionFilter {
+            &self.filter
+        }
+        #[inline(always)]
+        fn senses(&self) -> bool {
+            self.sensor
+        }
+        #[inline(always)]
+        fn material(&self) -> (Scalar, Scalar) {
+            (self.friction, self.restitution)
+        }
+    };
+}
+
 impl ShapeData for Body {
     const PLACED: bool = false;
-    #[inline(always)]
-    fn geometry(&self) -> &Shape {
-        &self.shape
-    }
-    #[inline(always)]
-    fn filters(&self) -> &CollisionFilter {
-        &self.filter
-    }
-    #[inline(always)]
-    fn senses(&self) -> bool {
-        self.sensor
-    }
-    #[inline(always)]
-    fn material(&self) -> (Scalar, Scalar) {
-        (self.friction, self.restitution)
-    }
+    shape_fields!();
     #[inline(always)]
     fn place(&self, body: Transform) -> Transform {
         body
@@ -301,22 +309,7 @@ impl ShapeData for Body {
 
 impl ShapeData for BodyShape {
     const PLACED: bool = true;
-    #[inline(always)]
-    fn geometry(&self) -> &Shape {
-        &self.shape
-    }
-    #[inline(always)]
-    fn filters(&self) -> &CollisionFilter {
-        &self.filter
-    }
-    #[inline(always)]
-    fn senses(&self) -> bool {
-        self.sensor
-    }
-    #[inline(always)]
-    fn material(&self) -> (Scalar, Scalar) {
-        (self.friction, self.restitution)
-    }
+    shape_fields!();
     #[inline(always)]
     fn place(&self, body: Transform) -> Transform {
         body.compose(self.local)
