@@ -806,21 +806,34 @@ pub(crate) fn end_arbiters_of(
             (Some(a), Some(b)) => sensor_arbiter(arb, a, b, shapes).is_some_and(|(s, _)| s),
             _ => false,
         };
-        if !sensor && matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring) {
-            let mut ended = *arb;
-            ended.state = ArbiterState::Separated;
-            if let Some(h) = handlers.get(ended.level_a, ended.level_b) {
-                let mut ctx = CallbackContext { bodies, post_step: post_step.view() };
-                h.end(&ended, &mut ctx);
-            }
-        }
+        end_if_begun(arb, sensor, bodies, handlers, post_step);
         false
     });
 }
 
+/// Calls `end` for an arbiter about to be dropped, if it is a contact pair
+/// (not `sensor`) that had begun.
+fn end_if_begun(
+    arb: &Arbiter,
+    sensor: bool,
+    bodies: &Arena<'_, Body>,
+    handlers: &mut HandlerTable<'_>,
+    post_step: &mut PostStepQueue<'_>,
+) {
+    if !sensor && matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring) {
+        let mut ended = *arb;
+        ended.state = ArbiterState::Separated;
+        if let Some(h) = handlers.get(ended.level_a, ended.level_b) {
+            let mut ctx = CallbackContext { bodies, post_step: post_step.view() };
+            h.end(&ended, &mut ctx);
+        }
+    }
+}
+
 /// Ends and drops the arbiters of shape `shape` of body slot `index` (the
-/// shape was removed; `removed_sensor` its sensor flag), calling `end` for those that had begun, and moves the
-/// body's later shapes' arbiters down one index. The arbiters stay in key
+/// shape was removed; `removed_sensor` its sensor flag), calling `end` for
+/// those that had begun, and moves the body's later shapes' arbiters down
+/// one index. The arbiters stay in key
 /// order: the indices map in order.
 pub(crate) fn end_arbiters_of_shape(
     index: u32,
@@ -843,14 +856,7 @@ pub(crate) fn end_arbiters_of_shape(
             let (other, other_shape) = if on_a { (arb.body_b, sb) } else { (arb.body_a, sa) };
             let sensor = removed_sensor
                 || bodies.get(other).and_then(|o| shape_of(o, other_shape, shapes)).is_some_and(|s| s.sensor);
-            if !sensor && matches!(arb.state, ArbiterState::Contact | ArbiterState::Ignoring) {
-                let mut ended = *arb;
-                ended.state = ArbiterState::Separated;
-                if let Some(h) = handlers.get(ended.level_a, ended.level_b) {
-                    let mut ctx = CallbackContext { bodies, post_step: post_step.view() };
-                    h.end(&ended, &mut ctx);
-                }
-            }
+            end_if_begun(arb, sensor, bodies, handlers, post_step);
             return false;
         }
         let down = |on: bool, s: u32| if on && s > shape { s - 1 } else { s };
