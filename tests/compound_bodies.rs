@@ -309,3 +309,48 @@ fn bad_shapes_are_errors_and_change_nothing() {
     w.remove_body(other).expect("live");
     assert_eq!(w.add_shape(other, ShapeDef::circle(s(0.1))), Err(Error::StaleHandle));
 }
+
+/// Per-shape material after creation: friction of one shape changes the
+/// friction of that shape's contacts only; a denser shape pulls the centre of
+/// mass towards itself by the closed form.
+#[test]
+fn shape_material_and_density_can_change_after_creation() {
+    let mut w = world_with(50.0, 50.0, caps(), true);
+    let ground = w.add_path(PolygonPath::rectangle(s(40.0), s(1.0)).expect("box")).expect("room");
+    w.add_body(BodyDef::polygon(ground).position(v(0.0, -0.5)).static_body().friction(s(0.5)))
+        .expect("ground");
+    let sq = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("room");
+    let b = w.add_body(BodyDef::polygon(sq).position(v(0.0, 0.5)).friction(s(0.5))).expect("box");
+    w.add_shape(b, ShapeDef::polygon(sq).offset(v(2.0, 0.0)).friction(s(0.5))).expect("second box");
+    // Two equal unit boxes 2 m apart: the centre is midway.
+    let x0 = f(w.body(b).expect("live").position().x);
+    assert!((x0 - 1.0).abs() < 1e-9, "centre {x0}");
+    w.set_shape_friction(b, 1, s(0.0)).expect("shape 1");
+    for _ in 0..30 {
+        w.step(dt()).expect("step");
+    }
+    for arb in w.arbiters().filter(|a| !a.contact_points().is_empty()) {
+        let shape = if arb.body_a() == b { arb.shape_a() } else { arb.shape_b() };
+        // √(0.5 · μ) as Box2D mixes friction: 0.5 for shape 0, 0 for shape 1.
+        let expected = if shape == 1 { 0.0 } else { 0.5 };
+        assert!((f(arb.friction()) - expected).abs() < 1e-6, "shape {shape}: {}", f(arb.friction()));
+    }
+    assert_eq!(w.shape(b, 1).map(|s| s.friction), Ok(s(0.0)));
+    assert_eq!(w.body(b).map(|b| b.friction()), Ok(s(0.5)), "shape 0's friction is the body's");
+    // Shape 1 three times as dense: the centre moves to 3/4 of the way, the
+    // mass to 4 kg. (The shapes stay where they are.)
+    let before = w.body(b).expect("live").position();
+    let right = before + w.shape(b, 1).expect("shape 1").local.p;
+    w.set_shape_density(b, 1, s(3.0)).expect("denser");
+    let body = w.body(b).expect("live");
+    assert!((f(body.mass()) - 4.0).abs() < 1e-6);
+    let offset = f(body.position().x - before.x);
+    assert!((offset - 0.5 * f(body.rotation().c)).abs() < 0.01, "centre moved by {offset}");
+    let right_after = body.position() + body.rotation().rotate(w.shape(b, 1).expect("shape 1").local.p);
+    assert!(f((right_after - right).length()) < 0.05, "the shape stayed put (up to the body's tilt)");
+    // Bad input.
+    assert_eq!(w.set_shape_friction(b, 2, s(0.1)), Err(Error::OutOfRange { what: "shape index" }));
+    assert!(w.set_shape_friction(b, 0, s(-1.0)).is_err());
+    assert_eq!(w.set_shape_density(b, 5, s(1.0)), Err(Error::OutOfRange { what: "shape index" }));
+    assert!(w.set_shape_density(b, 0, s(0.0)).is_err());
+}

@@ -1,9 +1,11 @@
 //! The compound-body API of [`World`]: add, read and remove a body's shapes
 //! (see [`crate::compound`]).
 
-use crate::body::{compute_aabb, shape_radius, BodyHandle, BodyType, MassSpec, Shape};
+use crate::body::{compute_aabb, shape_radius, BodyHandle, BodyType, CollisionFilter, MassSpec, Shape};
 use crate::collision;
-use crate::compound::{shapes_of, BodyShape, ShapeDef, ShapeSlot, MAX_SHAPES_PER_BODY, NO_SHAPE};
+use crate::compound::{
+    is_compound, shapes_of, BodyShape, ShapeDef, ShapeSlot, MAX_SHAPES_PER_BODY, NO_SHAPE,
+};
 use crate::error::Error;
 use crate::geometry::mass::mul_div_round;
 use crate::geometry::{compound_mass, MassData, MassPart};
@@ -108,6 +110,115 @@ impl World<'_> {
             .find(|&(i, _)| i == index)
             .map(|(_, s)| s)
             .ok_or(Error::OutOfRange { what: "shape index" })
+    }
+
+    /// Sets the friction coefficient of shape `index` of a body (Box2D's
+    /// `b2Shape_SetFriction`); contacts that begin after the change use it (as
+    /// [`set_friction`](World::set_friction), which sets every shape's).
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`], [`Error::OutOfRange`] for a friction out of
+    /// range or an index the body does not have; the world is unchanged on error.
+    pub fn set_shape_friction(&mut self, h: BodyHandle, index: u32, mu: Scalar) -> Result<(), Error> {
+        check_friction(mu)?;
+        self.edit_shape(h, index, |s| s.friction = mu)
+    }
+
+    /// Sets the restitution of shape `index` of a body, as
+    /// [`set_shape_friction`](World::set_shape_friction).
+    ///
+    /// # Errors
+    /// As [`set_shape_friction`](World::set_shape_friction).
+    pub fn set_shape_restitution(&mut self, h: BodyHandle, index: u32, e: Scalar) -> Result<(), Error> {
+        check_restitution(e)?;
+        self.edit_shape(h, index, |s| s.restitution = e)
+    }
+
+    /// Sets the collision filter of shape `index` of a body (Box2D's
+    /// `b2Shape_SetFilter`): pairs it no longer collides with separate and end
+    /// from the next step.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`], [`Error::OutOfRange`] for an index the body
+    /// does not have.
+    pub fn set_shape_filter(
+        &mut self,
+        h: BodyHandle,
+        index: u32,
+        filter: CollisionFilter,
+    ) -> Result<(), Error> {
+        self.edit_shape(h, index, |s| s.filter = filter)
+    }
+
+    /// Sets the density (kg/m²) of shape `index` of a dynamic body (Box2D's
+    /// `b2Shape_SetDensity` with the mass updated): the body's mass data and
+    /// centre of mass are recomputed from its shapes, as in
+    /// [`add_shape`](World::add_shape). On a one-shape body it is
+    /// [`set_mass`](World::set_mass) with that density.
+    ///
+    /// # Errors
+    /// [`Error::StaleHandle`]; [`Error::InvalidOperation`] for a static or
+    /// kinematic body or a segment (no area); [`Error::OutOfRange`] for a
+    /// density, or a resulting mass or inertia, out of range, or an index the
+    /// body does not have; [`Error::OutsideBounds`] when the new centre is
+    /// outside the world. The world is unchanged on error.
+    pub fn set_shape_density(&mut self, h: BodyHandle, index: u32, density: Scalar) -> Result<(), Error> {
+        let body = self.bodies.get(h).ok_or(Error::StaleHandle)?;
+        if !body.is_dynamic() {
+            return Err(Error::InvalidOperation {
+                what: "set the density of a static or kinematic body's shape",
+            });
+        }
+        if !is_compound(body) {
+            if index != 0 {
+                return Err(Error::OutOfRange { what: "shape index" });
+            }
+            return self.set_mass(h, MassSpec::Density(density));
+        }
+        let (mut list, n) = self.shape_list(h)?;
+        let shape = list.get_mut(index as usize).filter(|_| (index as usize) < n);
+        let shape = shape.ok_or(Error::OutOfRange { what: "shape index" })?;
+        if matches!(shape.shape, Shape::Segment(_)) {
+            return Err(Error::InvalidOperation { what: "a segment has no area: it adds no mass" });
+        }
+        let (area, unit_inertia, _) = self.shape_geometry(shape.shape)?;
+        let part = MassData::from_density(density, area, unit_inertia)?;
+        (shape.mass, shape.inertia) = (part.mass, part.inertia);
+        self.place_shapes(h, &mut list, n)
+    }
+
+    /// Applies `f` to shape `index` of body `h` (a one-shape body's data is
+    /// the body's; shape 0's is mirrored on the body).
+    fn edit_shape(&mut self, h: BodyHandle, index: u32, f: impl FnOnce(&mut BodyShape)) -> Result<(), Error> {
+        let body = self.bodies.get(h).ok_or(Error::StaleHandle)?;
+        let mut at = body.shapes;
+        if is_compound(body) {
+            for _ in 0..index {
+                at = self.paths.slots.get_at(at).ok_or(Error::OutOfRange { what: "shape index" })?.next;
+            }
+        } else if index != 0 {
+            return Err(Error::OutOfRange { what: "shape index" });
+        }
+        let edited = match self.paths.slots.get_at_mut(at) {
+            Some(slot) if is_compound(body) => {
+                f(&mut slot.data);
+                slot.data
+            }
+            _ if is_compound(body) => return Err(Error::OutOfRange { what: "shape index" }),
+            _ => {
+                let mut one = BodyShape::of_body(body);
+                f(&mut one);
+                one
+            }
+        };
+        if index == 0 {
+            if let Some(b) = self.bodies.get_mut(h) {
+                b.friction = edited.friction;
+                b.restitution = edited.restitution;
+                b.filter = edited.filter;
+            }
+        }
+        Ok(())
     }
 
     /// Every shape of a body with its index, in order.
