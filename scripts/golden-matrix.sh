@@ -29,6 +29,14 @@ TEST_TIMEOUT=${GOLDEN_TEST_TIMEOUT:-1800}
 M4_TIMEOUT=${GOLDEN_M4_TIMEOUT:-1800}
 
 start_all=$SECONDS
+# Every golden scene is one test in tests/golden.rs and one entry of the
+# Cortex-M4's list: a run must pass exactly this many.
+SCENES=$(grep -c '^#\[test\]' tests/golden.rs)
+M4_SCENES=$(grep -c '^    ("' cross/cortex-m4/src/main.rs)
+[ "$SCENES" = "$M4_SCENES" ] || {
+  printf 'golden-matrix: ERROR: %s\n' "tests/golden.rs has $SCENES scenes, cross/cortex-m4 lists $M4_SCENES" >&2
+  exit 2
+}
 say() { printf '%s\n' "$*"; }
 die() {
   printf 'golden-matrix: ERROR: %s\n' "$*" >&2
@@ -178,7 +186,7 @@ golden() {
   local log="$LOGS/$name-$profile.log"
   env "$@" timeout "$TEST_TIMEOUT" cargo test "${args[@]}" -- --nocapture >"$log" 2>&1 || status=$?
   # A run that printed no result line has not run the tests.
-  [ "$status" -eq 0 ] && ! grep -q '^test result: ok. 5 passed' "$log" && status=1
+  [ "$status" -eq 0 ] && ! grep -q "^test result: ok. $SCENES passed" "$log" && status=1
   record "$name" "$profile" "$how" "$status" "$((SECONDS - t0))" "$log"
 }
 
@@ -231,7 +239,7 @@ if selected thumbv7em-none-eabihf; then
     [ "$profile" = release ] && flags=(--release)
     (cd cross/cortex-m4 && timeout "$M4_TIMEOUT" cargo run --locked "${flags[@]}") >"$log" 2>&1 </dev/null ||
       status=$?
-    [ "$status" -eq 0 ] && ! grep -q '^golden: 5 passed, 0 failed' "$log" && status=1
+    [ "$status" -eq 0 ] && ! grep -q "^golden: $SCENES passed, 0 failed" "$log" && status=1
     record thumbv7em-none-eabihf "$profile" "qemu-system-arm mps2-an386" "$status" "$((SECONDS - t0))" "$log"
   done
 fi
