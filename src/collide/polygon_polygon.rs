@@ -110,8 +110,8 @@ pub fn collide_polygons(
     let radius = poly_a.rounding + poly_b.rounding;
     let reach = if radius == Scalar::ZERO { margin } else { margin + radius };
     let b_in_a = xf_a.inv_mul(xf_b);
-    let verts_b_in_a = transform_vertices(poly_b, b_in_a);
-    let verts_b_in_a = verts_b_in_a.get(..poly_b.vertices().len()).unwrap_or(&[]);
+    let mut buf_b = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+    let verts_b_in_a = transform_vertices(poly_b, b_in_a, &mut buf_b);
     let Some((edge_a, sep_a)) = max_separation(poly_a, verts_b_in_a, b_in_a.p) else {
         return Manifold::EMPTY;
     };
@@ -119,8 +119,8 @@ pub fn collide_polygons(
         return Manifold::EMPTY;
     }
     let a_in_b = xf_b.inv_mul(xf_a);
-    let verts_a_in_b = transform_vertices(poly_a, a_in_b);
-    let verts_a_in_b = verts_a_in_b.get(..poly_a.vertices().len()).unwrap_or(&[]);
+    let mut buf_a = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+    let verts_a_in_b = transform_vertices(poly_a, a_in_b, &mut buf_a);
     let Some((edge_b, sep_b)) = max_separation(poly_b, verts_a_in_b, a_in_b.p) else {
         return Manifold::EMPTY;
     };
@@ -164,15 +164,23 @@ pub fn collide_polygons(
     }
 }
 
-/// `poly`'s vertices mapped by `xf` (into the other body's frame). Entries past
-/// the polygon's vertex count are zero.
+/// `poly`'s vertices mapped by `xf` (into the other body's frame), written to
+/// the start of `out` and returned as that slice (as many as `poly` has).
 ///
 /// Computes `xf.apply(v)` for each vertex, `(c·x − s·y + px, s·x + c·y + py)`,
 /// but reuses the two products of a coordinate equal to the previous vertex's
 /// (the same inputs give the same bits): a box's consecutive corners share x or
 /// y, so its four corners take 10 products instead of 16.
-fn transform_vertices(poly: &PolygonPath, xf: Transform) -> [Vector2; MAX_POLYGON_VERTICES] {
-    let mut out = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+///
+/// Inlined into its caller and writing into the caller's buffer, so the
+/// vertices are not copied out as a whole array.
+#[inline(always)]
+fn transform_vertices<'o>(
+    poly: &PolygonPath,
+    xf: Transform,
+    out: &'o mut [Vector2; MAX_POLYGON_VERTICES],
+) -> &'o [Vector2] {
+    let count = poly.vertices().len().min(MAX_POLYGON_VERTICES);
     let (c, s, p) = (xf.q.c, xf.q.s, xf.p);
     let mut prev: Option<(Vector2, [Scalar; 4])> = None;
     for (slot, v) in out.iter_mut().zip(poly.vertices()) {
@@ -188,7 +196,7 @@ fn transform_vertices(poly: &PolygonPath, xf: Transform) -> [Vector2; MAX_POLYGO
         *slot = Vector2::new(cx - sy, sx + cy) + p;
         prev = Some((*v, [cx, sx, sy, cy]));
     }
-    out
+    out.get(..count).unwrap_or(&[])
 }
 
 /// The face of `poly` with the greatest separation from the convex polygon with
@@ -210,15 +218,7 @@ fn max_separation(poly: &PolygonPath, other: &[Vector2], towards: Vector2) -> Op
         return None;
     }
     let (vertices, normals) = (poly.vertices(), poly.normals());
-    let count = vertices.len().min(normals.len());
-    let mut dirs = [Direction::PosX; MAX_POLYGON_VERTICES];
-    for (d, n) in dirs.iter_mut().zip(normals.iter().take(count)) {
-        *d = Direction::of(*n);
-    }
-    let dirs = dirs.get(..count).unwrap_or(&[]);
-    if let ([v0, v1, v2, v3], [Direction::NegY, Direction::PosX, Direction::PosY, Direction::NegX]) =
-        (vertices, dirs)
-    {
+    if let ([v0, v1, v2, v3], true) = (vertices, is_box_in_own_frame(normals)) {
         // A box in its own frame, as `PolygonPath::rectangle` makes it: each
         // face's distance is a subtraction (the dot product by an axis, its
         // `+ 0` changing nothing), so the plain full scan, straight-line and
@@ -240,6 +240,12 @@ fn max_separation(poly: &PolygonPath, other: &[Vector2], towards: Vector2) -> Op
         }
         return Some(best);
     }
+    let count = vertices.len().min(normals.len());
+    let mut dirs = [Direction::PosX; MAX_POLYGON_VERTICES];
+    for (d, n) in dirs.iter_mut().zip(normals.iter().take(count)) {
+        *d = Direction::of(*n);
+    }
+    let dirs = dirs.get(..count).unwrap_or(&[]);
     // The start changes only how soon the scans stop, never the result, so
     // it is picked by a coarse dot product in plain integer arithmetic: the
     // normal's components (|n| ≤ 1, at most 2^32 in bits) to 16 fractional
@@ -278,6 +284,19 @@ fn max_separation(poly: &PolygonPath, other: &[Vector2], towards: Vector2) -> Op
         }
     }
     best
+}
+
+/// Whether `normals` are exactly −y, +x, +y, −x, in that order (a box in its
+/// own frame, as [`PolygonPath::rectangle`] makes it): the same test as
+/// classifying each with [`Direction::of`], by comparing bits directly.
+#[inline(always)]
+fn is_box_in_own_frame(normals: &[Vector2]) -> bool {
+    let (one, zero) = (Scalar::ONE, Scalar::ZERO);
+    matches!(normals, [n0, n1, n2, n3]
+        if n0.x == zero && n0.y == -one
+            && n1.x == one && n1.y == zero
+            && n2.x == zero && n2.y == one
+            && n3.x == -one && n3.y == zero)
 }
 
 /// The least of `distance(w)` over `other`, face `face`'s deepest vertex, or
@@ -591,8 +610,8 @@ mod tests {
                     Scalar::from_bits((next() as i64) >> 30),
                 )
             };
-            let verts = transform_vertices(b, Transform::new(p, q));
-            let other = &verts[..b.vertices().len()];
+            let mut buf = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+            let other = transform_vertices(b, Transform::new(p, q), &mut buf);
             let towards = Vector2::new(
                 Scalar::from_bits((next() as i64) >> 28),
                 Scalar::from_bits((next() as i64) >> 28),
@@ -620,7 +639,9 @@ mod tests {
             );
             let xf = Transform::new(p, Rot::from_angle(angle));
             let shape = &shapes[k % shapes.len()];
-            let got = transform_vertices(shape, xf);
+            let mut buf = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+            let got = transform_vertices(shape, xf, &mut buf);
+            assert_eq!(got.len(), shape.vertices().len());
             for (g, w) in got.iter().zip(shape.vertices()) {
                 assert_eq!(*g, xf.apply(*w));
             }
@@ -853,13 +874,14 @@ mod tests {
         // drives the defensive branch directly: the incident box lies wholly to
         // the right of the reference face's strip.
         let (ground, small) = (rect(4, 2), rect(2, 2));
-        let verts = transform_vertices(&small, at("5", "1.5"));
+        let mut buf = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+        let verts = transform_vertices(&small, at("5", "1.5"), &mut buf);
         let mut reference = Reference {
             poly: &ground,
             edge: 2,
             separation: Scalar::lit("-0.5"),
             incident: &small,
-            incident_vertices: &verts[..4],
+            incident_vertices: verts,
             incident_rotation: Rot::IDENTITY,
             reference_is_b: false,
             radius: ZERO,
