@@ -528,7 +528,21 @@ fn single(
 /// `0 ≤ tau ≤ length`, where `tau_p` and `tau_q` are the ends' coordinates
 /// across the strip. The caller guarantees the segment meets the strip, so a
 /// moved end's divisor (`tau_q − tau_p`) is never zero.
+///
+/// The common case, an end already inside the strip, is inlined into the
+/// caller; moving an end (a division) is not.
+#[inline(always)]
 pub(super) fn clip_end(p: Vector2, q: Vector2, tau_p: Scalar, tau_q: Scalar, length: Scalar) -> Vector2 {
+    if tau_p >= Scalar::ZERO && tau_p <= length {
+        p
+    } else {
+        clip_end_moved(p, q, tau_p, tau_q, length)
+    }
+}
+
+/// [`clip_end`] for an end outside the strip (`tau_p < 0` or `tau_p > length`).
+#[inline(never)]
+fn clip_end_moved(p: Vector2, q: Vector2, tau_p: Scalar, tau_q: Scalar, length: Scalar) -> Vector2 {
     let (over, span) = if tau_p < Scalar::ZERO {
         (-tau_p, tau_q - tau_p)
     } else if tau_p > length {
