@@ -205,33 +205,36 @@ fn transform_vertices<'o>(
 /// index) wins ties. `None` when either polygon has no vertices.
 ///
 /// A box in its own frame (normals −y, +x, +y, −x, as
-/// [`PolygonPath::rectangle`] makes them) takes a straight-line full scan: each
-/// distance is one subtraction, and without early exits there is nothing to
-/// mispredict. Any other polygon is scanned face by face from the face looking
+/// [`PolygonPath::rectangle`] makes them) takes a straight-line scan for the
+/// bounds of `other`, then one subtraction a face; without early exits there is
+/// nothing to mispredict. Any other polygon is scanned face by face from the face looking
 /// towards `towards` (the other polygon's origin in `poly`'s frame, judged by
 /// a coarse integer dot product), which is usually the answer: a face replaces the best only when its deepest vertex is
 /// shallower (or as shallow with a lower index), so each later face's scan
 /// stops at its first vertex at or below the best. The result is the same for
 /// every start and on both paths (a test holds both to the definition).
 fn max_separation(poly: &PolygonPath, other: &[Vector2], towards: Vector2) -> Option<(usize, Scalar)> {
-    if other.is_empty() {
-        return None;
-    }
+    let &first = other.first()?;
     let (vertices, normals) = (poly.vertices(), poly.normals());
     if let ([v0, v1, v2, v3], true) = (vertices, is_box_in_own_frame(normals)) {
         // A box in its own frame, as `PolygonPath::rectangle` makes it: each
         // face's distance is a subtraction (the dot product by an axis, its
-        // `+ 0` changing nothing), so the plain full scan, straight-line and
-        // without early exits or a start face, is the cheapest; it is the
-        // definition itself (the first of equal faces wins).
-        let z = Scalar::ZERO;
-        let (mut d0, mut d1, mut d2, mut d3) = (Scalar::MAX, Scalar::MAX, Scalar::MAX, Scalar::MAX);
+        // `+ 0` changing nothing). The saturating `w.y − v.y` never decreases
+        // as `w.y` grows and the saturating negation never increases, so the
+        // least distance over `other` is the distance of `other`'s least or
+        // greatest coordinate, to the bit: the bounds of `other` first, then
+        // one subtraction a face. Straight-line, without early exits or a
+        // start face; the first of equal faces wins, as in the definition.
+        let (mut lo, mut hi) = (first, first);
         for w in other {
-            d0 = d0.min(z + -(w.y - v0.y));
-            d1 = d1.min((w.x - v1.x) + z);
-            d2 = d2.min(z + (w.y - v2.y));
-            d3 = d3.min(-(w.x - v3.x) + z);
+            (lo.x, lo.y) = (lo.x.min(w.x), lo.y.min(w.y));
+            (hi.x, hi.y) = (hi.x.max(w.x), hi.y.max(w.y));
         }
+        let z = Scalar::ZERO;
+        let d0 = z + -(hi.y - v0.y);
+        let d1 = (lo.x - v1.x) + z;
+        let d2 = z + (lo.y - v2.y);
+        let d3 = -(hi.x - v3.x) + z;
         let mut best = (0, d0);
         for (i, d) in [(1, d1), (2, d2), (3, d3)] {
             if d > best.1 {
@@ -591,6 +594,37 @@ mod tests {
             }
         }
         best
+    }
+
+    #[test]
+    fn max_separation_of_a_box_is_the_definition_even_where_distances_saturate() {
+        // The box path takes the least and greatest coordinates first; with
+        // coordinates at the ends of the range every distance saturates one
+        // way or the other, and the result must still be the definition's.
+        let boxes = [rect(1, 1), rect(4, 2)];
+        let extremes =
+            [Scalar::MIN, Scalar::MIN + Scalar::ONE, -Scalar::ONE, Scalar::ZERO, Scalar::ONE, Scalar::MAX];
+        let mut x = 0x5A7E_D157_A9CE_0001u64;
+        for k in 0..4_000 {
+            let mut pick = || {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                if x.is_multiple_of(3) {
+                    Scalar::from_bits((x as i64) >> 28)
+                } else {
+                    extremes[(x >> 8) as usize % extremes.len()]
+                }
+            };
+            let n = 1 + k % 5;
+            let other: std::vec::Vec<Vector2> = (0..n).map(|_| Vector2::new(pick(), pick())).collect();
+            let b = &boxes[k % boxes.len()];
+            assert_eq!(
+                max_separation(b, &other, Vector2::ZERO),
+                max_separation_by_definition(b, &other),
+                "{other:?}"
+            );
+        }
     }
 
     #[test]
