@@ -81,6 +81,10 @@ impl Manifold {
     /// The point is formed as `frame.p + q·local` and the other anchor as
     /// `point − other_position`: fixed-point addition is exact (short of
     /// saturation), so both anchors name exactly the same world point.
+    ///
+    /// Always inlined: built in the caller's place, the manifold is not copied
+    /// out of a call (a `memcpy` of its 152 bytes per pair otherwise).
+    #[inline(always)]
     pub(crate) fn from_local(
         frame: Transform,
         other_position: Vector2,

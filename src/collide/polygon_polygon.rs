@@ -110,8 +110,8 @@ pub fn collide_polygons(
     let radius = poly_a.rounding + poly_b.rounding;
     let reach = if radius == Scalar::ZERO { margin } else { margin + radius };
     let b_in_a = xf_a.inv_mul(xf_b);
-    let verts_b_in_a = transform_vertices(poly_b, b_in_a);
-    let verts_b_in_a = verts_b_in_a.get(..poly_b.vertices().len()).unwrap_or(&[]);
+    let mut buf_b = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+    let verts_b_in_a = transform_vertices(poly_b, b_in_a, &mut buf_b);
     let Some((edge_a, sep_a)) = max_separation(poly_a, verts_b_in_a, b_in_a.p) else {
         return Manifold::EMPTY;
     };
@@ -119,8 +119,8 @@ pub fn collide_polygons(
         return Manifold::EMPTY;
     }
     let a_in_b = xf_b.inv_mul(xf_a);
-    let verts_a_in_b = transform_vertices(poly_a, a_in_b);
-    let verts_a_in_b = verts_a_in_b.get(..poly_a.vertices().len()).unwrap_or(&[]);
+    let mut buf_a = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+    let verts_a_in_b = transform_vertices(poly_a, a_in_b, &mut buf_a);
     let Some((edge_b, sep_b)) = max_separation(poly_b, verts_a_in_b, a_in_b.p) else {
         return Manifold::EMPTY;
     };
@@ -164,15 +164,23 @@ pub fn collide_polygons(
     }
 }
 
-/// `poly`'s vertices mapped by `xf` (into the other body's frame). Entries past
-/// the polygon's vertex count are zero.
+/// `poly`'s vertices mapped by `xf` (into the other body's frame), written to
+/// the start of `out` and returned as that slice (as many as `poly` has).
 ///
 /// Computes `xf.apply(v)` for each vertex, `(c·x − s·y + px, s·x + c·y + py)`,
 /// but reuses the two products of a coordinate equal to the previous vertex's
 /// (the same inputs give the same bits): a box's consecutive corners share x or
 /// y, so its four corners take 10 products instead of 16.
-fn transform_vertices(poly: &PolygonPath, xf: Transform) -> [Vector2; MAX_POLYGON_VERTICES] {
-    let mut out = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+///
+/// Inlined into its caller and writing into the caller's buffer, so the
+/// vertices are not copied out as a whole array.
+#[inline(always)]
+fn transform_vertices<'o>(
+    poly: &PolygonPath,
+    xf: Transform,
+    out: &'o mut [Vector2; MAX_POLYGON_VERTICES],
+) -> &'o [Vector2] {
+    let count = poly.vertices().len().min(MAX_POLYGON_VERTICES);
     let (c, s, p) = (xf.q.c, xf.q.s, xf.p);
     let mut prev: Option<(Vector2, [Scalar; 4])> = None;
     for (slot, v) in out.iter_mut().zip(poly.vertices()) {
@@ -188,7 +196,7 @@ fn transform_vertices(poly: &PolygonPath, xf: Transform) -> [Vector2; MAX_POLYGO
         *slot = Vector2::new(cx - sy, sx + cy) + p;
         prev = Some((*v, [cx, sx, sy, cy]));
     }
-    out
+    out.get(..count).unwrap_or(&[])
 }
 
 /// The face of `poly` with the greatest separation from the convex polygon with
@@ -197,41 +205,36 @@ fn transform_vertices(poly: &PolygonPath, xf: Transform) -> [Vector2; MAX_POLYGO
 /// index) wins ties. `None` when either polygon has no vertices.
 ///
 /// A box in its own frame (normals −y, +x, +y, −x, as
-/// [`PolygonPath::rectangle`] makes them) takes a straight-line full scan: each
-/// distance is one subtraction, and without early exits there is nothing to
-/// mispredict. Any other polygon is scanned face by face from the face looking
+/// [`PolygonPath::rectangle`] makes them) takes a straight-line scan for the
+/// bounds of `other`, then one subtraction a face; without early exits there is
+/// nothing to mispredict. Any other polygon is scanned face by face from the face looking
 /// towards `towards` (the other polygon's origin in `poly`'s frame, judged by
 /// a coarse integer dot product), which is usually the answer: a face replaces the best only when its deepest vertex is
 /// shallower (or as shallow with a lower index), so each later face's scan
 /// stops at its first vertex at or below the best. The result is the same for
 /// every start and on both paths (a test holds both to the definition).
 fn max_separation(poly: &PolygonPath, other: &[Vector2], towards: Vector2) -> Option<(usize, Scalar)> {
-    if other.is_empty() {
-        return None;
-    }
+    let &first = other.first()?;
     let (vertices, normals) = (poly.vertices(), poly.normals());
-    let count = vertices.len().min(normals.len());
-    let mut dirs = [Direction::PosX; MAX_POLYGON_VERTICES];
-    for (d, n) in dirs.iter_mut().zip(normals.iter().take(count)) {
-        *d = Direction::of(*n);
-    }
-    let dirs = dirs.get(..count).unwrap_or(&[]);
-    if let ([v0, v1, v2, v3], [Direction::NegY, Direction::PosX, Direction::PosY, Direction::NegX]) =
-        (vertices, dirs)
-    {
+    if let ([v0, v1, v2, v3], true) = (vertices, is_box_in_own_frame(normals)) {
         // A box in its own frame, as `PolygonPath::rectangle` makes it: each
         // face's distance is a subtraction (the dot product by an axis, its
-        // `+ 0` changing nothing), so the plain full scan, straight-line and
-        // without early exits or a start face, is the cheapest; it is the
-        // definition itself (the first of equal faces wins).
-        let z = Scalar::ZERO;
-        let (mut d0, mut d1, mut d2, mut d3) = (Scalar::MAX, Scalar::MAX, Scalar::MAX, Scalar::MAX);
+        // `+ 0` changing nothing). The saturating `w.y − v.y` never decreases
+        // as `w.y` grows and the saturating negation never increases, so the
+        // least distance over `other` is the distance of `other`'s least or
+        // greatest coordinate, to the bit: the bounds of `other` first, then
+        // one subtraction a face. Straight-line, without early exits or a
+        // start face; the first of equal faces wins, as in the definition.
+        let (mut lo, mut hi) = (first, first);
         for w in other {
-            d0 = d0.min(z + -(w.y - v0.y));
-            d1 = d1.min((w.x - v1.x) + z);
-            d2 = d2.min(z + (w.y - v2.y));
-            d3 = d3.min(-(w.x - v3.x) + z);
+            (lo.x, lo.y) = (lo.x.min(w.x), lo.y.min(w.y));
+            (hi.x, hi.y) = (hi.x.max(w.x), hi.y.max(w.y));
         }
+        let z = Scalar::ZERO;
+        let d0 = z + -(hi.y - v0.y);
+        let d1 = (lo.x - v1.x) + z;
+        let d2 = z + (lo.y - v2.y);
+        let d3 = -(hi.x - v3.x) + z;
         let mut best = (0, d0);
         for (i, d) in [(1, d1), (2, d2), (3, d3)] {
             if d > best.1 {
@@ -240,6 +243,12 @@ fn max_separation(poly: &PolygonPath, other: &[Vector2], towards: Vector2) -> Op
         }
         return Some(best);
     }
+    let count = vertices.len().min(normals.len());
+    let mut dirs = [Direction::PosX; MAX_POLYGON_VERTICES];
+    for (d, n) in dirs.iter_mut().zip(normals.iter().take(count)) {
+        *d = Direction::of(*n);
+    }
+    let dirs = dirs.get(..count).unwrap_or(&[]);
     // The start changes only how soon the scans stop, never the result, so
     // it is picked by a coarse dot product in plain integer arithmetic: the
     // normal's components (|n| ≤ 1, at most 2^32 in bits) to 16 fractional
@@ -278,6 +287,19 @@ fn max_separation(poly: &PolygonPath, other: &[Vector2], towards: Vector2) -> Op
         }
     }
     best
+}
+
+/// Whether `normals` are exactly −y, +x, +y, −x, in that order (a box in its
+/// own frame, as [`PolygonPath::rectangle`] makes it): the same test as
+/// classifying each with [`Direction::of`], by comparing bits directly.
+#[inline(always)]
+fn is_box_in_own_frame(normals: &[Vector2]) -> bool {
+    let (one, zero) = (Scalar::ONE, Scalar::ZERO);
+    matches!(normals, [n0, n1, n2, n3]
+        if n0.x == zero && n0.y == -one
+            && n1.x == one && n1.y == zero
+            && n2.x == zero && n2.y == one
+            && n3.x == -one && n3.y == zero)
 }
 
 /// The least of `distance(w)` over `other`, face `face`'s deepest vertex, or
@@ -509,7 +531,21 @@ fn single(
 /// `0 ≤ tau ≤ length`, where `tau_p` and `tau_q` are the ends' coordinates
 /// across the strip. The caller guarantees the segment meets the strip, so a
 /// moved end's divisor (`tau_q − tau_p`) is never zero.
+///
+/// The common case, an end already inside the strip, is inlined into the
+/// caller; moving an end (a division) is not.
+#[inline(always)]
 pub(super) fn clip_end(p: Vector2, q: Vector2, tau_p: Scalar, tau_q: Scalar, length: Scalar) -> Vector2 {
+    if tau_p >= Scalar::ZERO && tau_p <= length {
+        p
+    } else {
+        clip_end_moved(p, q, tau_p, tau_q, length)
+    }
+}
+
+/// [`clip_end`] for an end outside the strip (`tau_p < 0` or `tau_p > length`).
+#[inline(never)]
+fn clip_end_moved(p: Vector2, q: Vector2, tau_p: Scalar, tau_q: Scalar, length: Scalar) -> Vector2 {
     let (over, span) = if tau_p < Scalar::ZERO {
         (-tau_p, tau_q - tau_p)
     } else if tau_p > length {
@@ -561,6 +597,37 @@ mod tests {
     }
 
     #[test]
+    fn max_separation_of_a_box_is_the_definition_even_where_distances_saturate() {
+        // The box path takes the least and greatest coordinates first; with
+        // coordinates at the ends of the range every distance saturates one
+        // way or the other, and the result must still be the definition's.
+        let boxes = [rect(1, 1), rect(4, 2)];
+        let extremes =
+            [Scalar::MIN, Scalar::MIN + Scalar::ONE, -Scalar::ONE, Scalar::ZERO, Scalar::ONE, Scalar::MAX];
+        let mut x = 0x5A7E_D157_A9CE_0001u64;
+        for k in 0..4_000 {
+            let mut pick = || {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                if x.is_multiple_of(3) {
+                    Scalar::from_bits((x as i64) >> 28)
+                } else {
+                    extremes[(x >> 8) as usize % extremes.len()]
+                }
+            };
+            let n = 1 + k % 5;
+            let other: std::vec::Vec<Vector2> = (0..n).map(|_| Vector2::new(pick(), pick())).collect();
+            let b = &boxes[k % boxes.len()];
+            assert_eq!(
+                max_separation(b, &other, Vector2::ZERO),
+                max_separation_by_definition(b, &other),
+                "{other:?}"
+            );
+        }
+    }
+
+    #[test]
     fn max_separation_is_the_first_best_face_from_any_start() {
         // The rectangles take the box path, the triangle the general one.
         let unit = rect(1, 1);
@@ -591,8 +658,8 @@ mod tests {
                     Scalar::from_bits((next() as i64) >> 30),
                 )
             };
-            let verts = transform_vertices(b, Transform::new(p, q));
-            let other = &verts[..b.vertices().len()];
+            let mut buf = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+            let other = transform_vertices(b, Transform::new(p, q), &mut buf);
             let towards = Vector2::new(
                 Scalar::from_bits((next() as i64) >> 28),
                 Scalar::from_bits((next() as i64) >> 28),
@@ -620,7 +687,9 @@ mod tests {
             );
             let xf = Transform::new(p, Rot::from_angle(angle));
             let shape = &shapes[k % shapes.len()];
-            let got = transform_vertices(shape, xf);
+            let mut buf = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+            let got = transform_vertices(shape, xf, &mut buf);
+            assert_eq!(got.len(), shape.vertices().len());
             for (g, w) in got.iter().zip(shape.vertices()) {
                 assert_eq!(*g, xf.apply(*w));
             }
@@ -853,13 +922,14 @@ mod tests {
         // drives the defensive branch directly: the incident box lies wholly to
         // the right of the reference face's strip.
         let (ground, small) = (rect(4, 2), rect(2, 2));
-        let verts = transform_vertices(&small, at("5", "1.5"));
+        let mut buf = [Vector2::ZERO; MAX_POLYGON_VERTICES];
+        let verts = transform_vertices(&small, at("5", "1.5"), &mut buf);
         let mut reference = Reference {
             poly: &ground,
             edge: 2,
             separation: Scalar::lit("-0.5"),
             incident: &small,
-            incident_vertices: &verts[..4],
+            incident_vertices: verts,
             incident_rotation: Rot::IDENTITY,
             reference_is_b: false,
             radius: ZERO,

@@ -2,7 +2,7 @@
 
 use managed::ManagedSlice;
 
-use super::{proxies_may_touch, PairSink, Proxy, SpatialIndex};
+use super::{PairSink, Proxy, SpatialIndex};
 
 /// Sorts the proxies by the left edge of their boxes and sweeps: each proxy is
 /// tested only against those that start before it ends along x. O(n log n + k)
@@ -146,7 +146,7 @@ pub(crate) fn sweep_sorted(proxies: &[Proxy], out: &mut PairSink<'_>) {
             if b.aabb.min.x > a.aabb.max.x {
                 break;
             }
-            if proxies_may_touch(a, b) && !out.push(k as u32, first.saturating_add(j) as u32) {
+            if touches_later(a, b) && !out.push(k as u32, first.saturating_add(j) as u32) {
                 return;
             }
         }
@@ -154,6 +154,19 @@ pub(crate) fn sweep_sorted(proxies: &[Proxy], out: &mut PairSink<'_>) {
 }
 
 /// The sort key: left edge, then proxy index.
+/// [`proxies_may_touch`](super::proxies_may_touch) for a `b` met after `a` in the sweep, where
+/// `b.min.x ≤ a.max.x` is already known: the same answer, with the y overlap
+/// (the test that rejects most candidates in a stack, whose columns share their
+/// x range) first.
+#[inline(always)]
+fn touches_later(a: &Proxy, b: &Proxy) -> bool {
+    let (a_box, b_box) = (a.aabb, b.aabb);
+    a_box.min.y <= b_box.max.y
+        && b_box.min.y <= a_box.max.y
+        && a_box.min.x <= b_box.max.x
+        && !(a.is_static && b.is_static)
+}
+
 fn key(proxies: &[Proxy], i: u32) -> (crate::Scalar, u32) {
     (proxies.get(i as usize).map_or(crate::Scalar::MAX, |p| p.aabb.min.x), i)
 }
@@ -195,7 +208,7 @@ impl SpatialIndex for SortAndSweepIndex<'_> {
                 if b.aabb.min.x > a.aabb.max.x {
                     break;
                 }
-                if proxies_may_touch(a, b) && !out.push(i, j) {
+                if touches_later(a, b) && !out.push(i, j) {
                     return;
                 }
             }

@@ -50,35 +50,35 @@ impl Rot {
     }
 
     /// `v` rotated by this rotation.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn rotate(self, v: Vector2) -> Vector2 {
         Vector2::new(self.c * v.x - self.s * v.y, self.s * v.x + self.c * v.y)
     }
 
     /// `v` rotated by the inverse of this rotation.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn inv_rotate(self, v: Vector2) -> Vector2 {
         Vector2::new(self.c * v.x + self.s * v.y, self.c * v.y - self.s * v.x)
     }
 
     /// The composition `self ∘ other` (rotate by `other`, then by `self`).
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn compose(self, o: Self) -> Self {
         Self { c: self.c * o.c - self.s * o.s, s: self.s * o.c + self.c * o.s }
     }
 
     /// The inverse rotation.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn inverse(self) -> Self {
         Self { c: self.c, s: -self.s }
     }
 
     /// The relative rotation `self⁻¹ ∘ other`.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn inv_mul(self, o: Self) -> Self {
         self.inverse().compose(o)
@@ -149,14 +149,14 @@ impl Transform {
     }
 
     /// A local point mapped to world space: `q·v + p`.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn apply(self, v: Vector2) -> Vector2 {
         self.q.rotate(v) + self.p
     }
 
     /// A world point mapped to local space: `q⁻¹·(v − p)`.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn apply_inv(self, v: Vector2) -> Vector2 {
         self.q.inv_rotate(v - self.p)
@@ -171,7 +171,7 @@ impl Transform {
     }
 
     /// The transform of frame `b` expressed in frame `self`: `self⁻¹ ∘ b`.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn inv_mul(self, b: Self) -> Self {
         Self { p: self.q.inv_rotate(b.p - self.p), q: self.q.inv_mul(b.q) }
