@@ -617,11 +617,15 @@ mod tests {
                 }
             };
             let n = 1 + k % 5;
-            let other: std::vec::Vec<Vector2> = (0..n).map(|_| Vector2::new(pick(), pick())).collect();
+            let mut points = [Vector2::ZERO; 5];
+            for p in &mut points {
+                *p = Vector2::new(pick(), pick());
+            }
+            let other = &points[..n];
             let b = &boxes[k % boxes.len()];
             assert_eq!(
-                max_separation(b, &other, Vector2::ZERO),
-                max_separation_by_definition(b, &other),
+                max_separation(b, other, Vector2::ZERO),
+                max_separation_by_definition(b, other),
                 "{other:?}"
             );
         }
