@@ -543,8 +543,18 @@ impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
             let (chain, other) = if chain_low { (bx, by) } else { (by, bx) };
             let Shape::Chain(h) = chain.shape else { return None };
             let chain_shape = BodyShape::of_body(chain);
-            // The other body's shape index sits in the lower or higher field.
-            let (mut link, mut first) = (link0, if chain_low { hi0 } else { lo0 });
+            // The other body's shape index sits in the lower or higher field,
+            // the chain's (always 0) in the other: a `from` past a key has a
+            // nonzero chain field, and starts at the next index (or link).
+            let (mut link, mut first) = if chain_low {
+                if lo0 > 0 {
+                    (link0.checked_add(1)?, 0)
+                } else {
+                    (link0, hi0)
+                }
+            } else {
+                (link0, lo0.saturating_add(u32::from(hi0 > 0)))
+            };
             let query = local_rect(other.aabb.expand(SPECULATIVE_DISTANCE), chain.transform());
             loop {
                 let l = self.shapes.chains.next_link(h, link, query)?;

@@ -10,7 +10,7 @@ use arphysics::{
 
 mod common;
 
-use common::{dt, f, s, v};
+use common::{dt, f, s, v, world_with};
 
 /// A 400 × 200 m world with gravity (0, −10) and room for 512 chain points.
 fn world() -> World<'static> {
@@ -407,4 +407,26 @@ fn bodies_share_a_chain_at_their_own_poses() {
     let (ya, yb) = (f(w.body(a).expect("a").position().y), f(w.body(b).expect("b").position().y));
     assert!((ya - 0.25).abs() < 0.01, "rests on the first ledge: {ya}");
     assert!(yb < -1.0, "falls through the back of the turned ledge: {yb}");
+}
+
+/// A chain added after the bodies that touch it has the higher slot of each
+/// pair: the candidate keys step past each link (a fuzzed world once looped
+/// forever here) and the balls rest on it as on a chain added first.
+#[test]
+fn a_chain_in_a_higher_slot_than_the_bodies_on_it() {
+    let mut w = world_with(50.0, 50.0, Capacities { chain_vertices: 16, ..Capacities::for_bodies(8) }, true);
+    let balls: Vec<_> = (0..3)
+        .map(|i| w.add_body(BodyDef::circle(s(0.25)).position(v(f64::from(i) - 1.0, 0.3))).expect("ball"))
+        .collect();
+    let points: Vec<Vector2> = (0..=6).rev().map(|i| v(f64::from(i) - 3.0, 0.0)).collect();
+    let chain = w.add_chain(ChainPath::open(&points).expect("path")).expect("room");
+    let ground = w.add_body(BodyDef::chain(chain)).expect("ground");
+    assert!(balls.iter().all(|b| b.index() < ground.index()), "the chain has the higher slot");
+    for _ in 0..120 {
+        w.step(dt()).expect("step");
+    }
+    for b in balls {
+        let y = f(w.body(b).expect("live").position().y);
+        assert!((y - 0.25).abs() < 0.01, "a ball rests on the chain: {y}");
+    }
 }
