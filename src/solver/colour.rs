@@ -233,9 +233,12 @@ fn colour<K: Kernel, const WIDE: bool>(
     for i in 0..=(last - first) {
         let b = if forward { first + i } else { last - i };
         let lo = b * LANES;
-        let mut active = M::<LANES>::none();
-        for (j, a) in active.0.iter_mut().enumerate() {
-            *a = -i32::from((s..e).contains(&(lo + j)));
+        let mut active = M::<LANES>::all();
+        if lo < s || lo + LANES > e {
+            // The colour's first or last block: only its lanes.
+            for (j, a) in active.0.iter_mut().enumerate() {
+                *a = -i32::from((s..e).contains(&(lo + j)));
+            }
         }
         if let Some(blk) = block_of(constraints, lo) {
             k.eight::<WIDE>(blk, active, bodies);
