@@ -14,7 +14,9 @@ use golden_scenes::{
 };
 
 fn report(name: &str, steps: u32, out: &Outcome) {
-    println!("{name} hash after {steps} steps: {:#018x} ({out:?})", out.hash);
+    // The level the contact kernels ran at (the same bits at every level).
+    let level = arphysics::simd_level();
+    println!("{name} hash after {steps} steps: {:#018x} ({out:?}, kernels {level:?})", out.hash);
 }
 
 #[test]
