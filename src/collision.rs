@@ -31,8 +31,8 @@ use crate::geometry::chain::local_rect;
 use crate::geometry::{Capsule, ChainSegment, PolygonPath, Segment};
 use crate::handler::{CallbackContext, HandlerTable, PostStepQueue};
 use crate::index::{
-    dedup_sorted, sweep_sorted, BruteForceIndex, PairSink, Proxy, SortAndSweepIndex, SpatialIndex,
-    AUTO_THRESHOLD,
+    dedup_sorted, sort_pairs, sweep_sorted, BruteForceIndex, PairSink, Proxy, SortAndSweepIndex,
+    SpatialIndex, AUTO_THRESHOLD,
 };
 use crate::limits::SPECULATIVE_DISTANCE;
 use crate::math::scalar::ZERO as ZERO_SCALAR;
@@ -293,10 +293,7 @@ pub(crate) fn broad_phase(
     }
     let (reported, dropped) = (sink.len, sink.dropped);
     // The sink keeps body-slot pairs; sort them into key order.
-    let reported = pairs.get_mut(..reported).unwrap_or(&mut []);
-    // The same order as the tuples' (lower slot, then higher), compared as one
-    // 64-bit key.
-    reported.sort_unstable_by_key(|&(a, b)| (u64::from(a) << 32) | u64::from(b));
+    let reported = sort_pairs(pairs, reported);
     let unique = dedup_sorted(reported);
     if ctx.strict_capacity {
         // The merge writes one arbiter per key of the union; check it fits first.
