@@ -282,7 +282,10 @@ pub(crate) fn broad_phase(
     };
     let mut sink = PairSink::new(pairs, slots, ctx.strict_capacity, &accept);
     match index {
-        Index::Auto if in_place => sweep_sorted(proxies, &mut sink),
+        Index::Auto if in_place => {
+            let next = sweep_sorted(proxies, auto_sweep.bands(), &mut sink);
+            auto_sweep.plan(next);
+        }
         Index::Auto => BruteForceIndex.find_pairs(proxies, &mut sink),
         Index::BruteForce(i) => i.find_pairs(proxies, &mut sink),
         Index::SortAndSweep(i) => i.find_pairs(proxies, &mut sink),
