@@ -335,42 +335,41 @@ pub(crate) fn sweep_sorted(proxies: &[Proxy], bands: Bands, out: &mut PairSink<'
     }
     for band in 0..BANDS {
         let (Some(&s), Some(&end)) = (start.get(band), start.get(band.saturating_add(1))) else { break };
-        let end = end as usize;
-        // In the band above (which starts where this one ends), the first
-        // proxy that can reach the present one's left edge: nondecreasing
-        // along this band, so found by stepping on.
-        let mut next = end;
-        let Some(own_band) = proxies.get(s as usize..end) else { continue };
-        for (k, a) in own_band.iter().enumerate() {
-            let k = (s as usize).saturating_add(k);
+        let (s, end) = (s as usize, end as usize);
+        let Some(own) = proxies.get(s..end) else { continue };
+        // The band above starts where this one ends.
+        let above_end = start.get(band.saturating_add(2)).map_or(end, |&e| e as usize);
+        let above = proxies.get(end..above_end).unwrap_or(&[]);
+        let reach = widest.get(band.saturating_add(1)).copied().unwrap_or(0);
+        // In the band above, the first proxy that can reach the present
+        // one's left edge: nondecreasing along this band, so found by
+        // stepping on.
+        let mut next = 0usize;
+        for (i, a) in own.iter().enumerate() {
+            let k = s.saturating_add(i);
             let first = k.saturating_add(1);
-            let own = proxies.get(first..end).unwrap_or(&[]);
-            if scan(a, k, own, first, out).is_none() {
+            if scan(a, k, own.get(i.saturating_add(1)..).unwrap_or(&[]), first, out).is_none() {
                 return bands;
             }
             let top = bands.of(a.aabb.max.y);
             if top <= band {
                 continue;
             }
-            // The band above: step the cursor on.
-            let above = band.saturating_add(1);
-            let (Some(&e), Some(&w)) = (start.get(above.saturating_add(1)), widest.get(above)) else {
-                continue;
-            };
-            let from = a.aabb.min.x.to_bits().saturating_sub(w);
-            while let Some(b) = proxies.get(next).filter(|_| next < e as usize) {
+            let from = a.aabb.min.x.to_bits().saturating_sub(reach);
+            while let Some(b) = above.get(next) {
                 if b.aabb.min.x.to_bits() >= from {
                     break;
                 }
                 next = next.saturating_add(1);
             }
-            if scan(a, k, proxies.get(next..e as usize).unwrap_or(&[]), next, out).is_none() {
+            let row = above.get(next..).unwrap_or(&[]);
+            if scan(a, k, row, end.saturating_add(next), out).is_none() {
                 return bands;
             }
             // Bands further up (a tall box): a binary search each.
-            for above in band.saturating_add(2)..=top {
+            for higher in band.saturating_add(2)..=top {
                 let (Some(&s), Some(&e), Some(&w)) =
-                    (start.get(above), start.get(above.saturating_add(1)), widest.get(above))
+                    (start.get(higher), start.get(higher.saturating_add(1)), widest.get(higher))
                 else {
                     break;
                 };
