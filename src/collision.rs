@@ -1007,19 +1007,36 @@ fn pair_arbiter<S: ShapeData>(
 /// far a turn can carry the surface (|ω|·r·dt). Speeds are taken at most at
 /// the world's limits, which the step enforces: a velocity a game set far above
 /// them cannot inflate the boxes.
+///
+/// Growing a box whose corners are in order by a margin ≥ 0 never collapses
+/// it, and growing it by `s` then `t` (both ≥ 0) is growing it by `s + t` when
+/// that sum does not overflow (saturating subtraction and addition of
+/// non-negative amounts), so such a box is grown once, inline, to the same
+/// bits as `expand(SPECULATIVE_DISTANCE).expand(turn)`.
 #[inline]
 fn proxy(ctx: &StepContext, b: &Body) -> Proxy {
-    let mut aabb = b.aabb.expand(SPECULATIVE_DISTANCE);
-    if b.moved_by_step() {
-        let (vmax, wmax) = (ctx.max_linear_speed, ctx.max_angular_speed);
-        let v = b.linear_velocity;
-        let (dx, dy) = (v.x.clamp(-vmax, vmax) * ctx.dt, v.y.clamp(-vmax, vmax) * ctx.dt);
-        let turn = b.angular_velocity.abs().min(wmax) * b.radius * ctx.dt;
-        aabb = aabb.expand(turn);
-        aabb.min += Vector2::new(dx.min(Scalar::ZERO), dy.min(Scalar::ZERO));
-        aabb.max += Vector2::new(dx.max(Scalar::ZERO), dy.max(Scalar::ZERO));
+    let is_static = b.body_type == BodyType::Static;
+    let bx = b.aabb;
+    let in_order = bx.min.x <= bx.max.x && bx.min.y <= bx.max.y;
+    let grown = |margin: Scalar| {
+        let m = Vector2::new(margin, margin);
+        Rect { min: bx.min - m, max: bx.max + m }
+    };
+    if !b.moved_by_step() {
+        let aabb = if in_order { grown(SPECULATIVE_DISTANCE) } else { bx.expand(SPECULATIVE_DISTANCE) };
+        return Proxy { aabb, is_static };
     }
-    Proxy { aabb, is_static: b.body_type == BodyType::Static }
+    let (vmax, wmax) = (ctx.max_linear_speed, ctx.max_angular_speed);
+    let v = b.linear_velocity;
+    let (dx, dy) = (v.x.clamp(-vmax, vmax) * ctx.dt, v.y.clamp(-vmax, vmax) * ctx.dt);
+    let turn = b.angular_velocity.abs().min(wmax) * b.radius * ctx.dt;
+    let mut aabb = match SPECULATIVE_DISTANCE.checked_add(turn) {
+        Some(margin) if in_order && turn >= Scalar::ZERO => grown(margin),
+        _ => bx.expand(SPECULATIVE_DISTANCE).expand(turn),
+    };
+    aabb.min += Vector2::new(dx.min(Scalar::ZERO), dy.min(Scalar::ZERO));
+    aabb.max += Vector2::new(dx.max(Scalar::ZERO), dy.max(Scalar::ZERO));
+    Proxy { aabb, is_static }
 }
 
 /// The contact manifold of shape `sa` of body `a` and shape `sb` of body
