@@ -395,13 +395,16 @@ pub(crate) fn sweep_sorted(proxies: &[Proxy], bands: Bands, out: &mut PairSink<'
 /// it met, or `None` when the sink asks to stop.
 #[inline(always)]
 fn scan(a: &Proxy, k: usize, row: &[Proxy], first: usize, out: &mut PairSink<'_>) -> Option<usize> {
-    for (j, b) in row.iter().enumerate() {
-        if b.aabb.min.x > a.aabb.max.x {
-            return Some(j);
+    let (k, right) = (k as u32, a.aabb.max.x);
+    let mut j = first as u32;
+    for b in row {
+        if b.aabb.min.x > right {
+            return Some(j.wrapping_sub(first as u32) as usize);
         }
-        if touches_later(a, b) && !out.push(k as u32, first.saturating_add(j) as u32) {
+        if touches_later(a, b) && !out.push(k, j) {
             return None;
         }
+        j = j.wrapping_add(1);
     }
     Some(row.len())
 }
