@@ -31,8 +31,8 @@ use crate::geometry::chain::local_rect;
 use crate::geometry::{Capsule, ChainSegment, PolygonPath, Segment};
 use crate::handler::{CallbackContext, HandlerTable, PostStepQueue};
 use crate::index::{
-    dedup_sorted, sweep_sorted, BruteForceIndex, PairSink, Proxy, SortAndSweepIndex, SpatialIndex,
-    AUTO_THRESHOLD,
+    dedup_sorted, sort_pairs, sweep_sorted, BruteForceIndex, PairSink, Proxy, SortAndSweepIndex,
+    SpatialIndex, AUTO_THRESHOLD,
 };
 use crate::limits::SPECULATIVE_DISTANCE;
 use crate::math::scalar::ZERO as ZERO_SCALAR;
@@ -282,7 +282,10 @@ pub(crate) fn broad_phase(
     };
     let mut sink = PairSink::new(pairs, slots, ctx.strict_capacity, &accept);
     match index {
-        Index::Auto if in_place => sweep_sorted(proxies, &mut sink),
+        Index::Auto if in_place => {
+            let next = sweep_sorted(proxies, auto_sweep.bands(), &mut sink);
+            auto_sweep.plan(next);
+        }
         Index::Auto => BruteForceIndex.find_pairs(proxies, &mut sink),
         Index::BruteForce(i) => i.find_pairs(proxies, &mut sink),
         Index::SortAndSweep(i) => i.find_pairs(proxies, &mut sink),
@@ -293,10 +296,7 @@ pub(crate) fn broad_phase(
     }
     let (reported, dropped) = (sink.len, sink.dropped);
     // The sink keeps body-slot pairs; sort them into key order.
-    let reported = pairs.get_mut(..reported).unwrap_or(&mut []);
-    // The same order as the tuples' (lower slot, then higher), compared as one
-    // 64-bit key.
-    reported.sort_unstable_by_key(|&(a, b)| (u64::from(a) << 32) | u64::from(b));
+    let reported = sort_pairs(pairs, reported);
     let unique = dedup_sorted(reported);
     if ctx.strict_capacity {
         // The merge writes one arbiter per key of the union; check it fits first.
@@ -1007,19 +1007,36 @@ fn pair_arbiter<S: ShapeData>(
 /// far a turn can carry the surface (|ω|·r·dt). Speeds are taken at most at
 /// the world's limits, which the step enforces: a velocity a game set far above
 /// them cannot inflate the boxes.
+///
+/// Growing a box whose corners are in order by a margin ≥ 0 never collapses
+/// it, and growing it by `s` then `t` (both ≥ 0) is growing it by `s + t` when
+/// that sum does not overflow (saturating subtraction and addition of
+/// non-negative amounts), so such a box is grown once, inline, to the same
+/// bits as `expand(SPECULATIVE_DISTANCE).expand(turn)`.
 #[inline]
 fn proxy(ctx: &StepContext, b: &Body) -> Proxy {
-    let mut aabb = b.aabb.expand(SPECULATIVE_DISTANCE);
-    if b.moved_by_step() {
-        let (vmax, wmax) = (ctx.max_linear_speed, ctx.max_angular_speed);
-        let v = b.linear_velocity;
-        let (dx, dy) = (v.x.clamp(-vmax, vmax) * ctx.dt, v.y.clamp(-vmax, vmax) * ctx.dt);
-        let turn = b.angular_velocity.abs().min(wmax) * b.radius * ctx.dt;
-        aabb = aabb.expand(turn);
-        aabb.min += Vector2::new(dx.min(Scalar::ZERO), dy.min(Scalar::ZERO));
-        aabb.max += Vector2::new(dx.max(Scalar::ZERO), dy.max(Scalar::ZERO));
+    let is_static = b.body_type == BodyType::Static;
+    let bx = b.aabb;
+    let in_order = bx.min.x <= bx.max.x && bx.min.y <= bx.max.y;
+    let grown = |margin: Scalar| {
+        let m = Vector2::new(margin, margin);
+        Rect { min: bx.min - m, max: bx.max + m }
+    };
+    if !b.moved_by_step() {
+        let aabb = if in_order { grown(SPECULATIVE_DISTANCE) } else { bx.expand(SPECULATIVE_DISTANCE) };
+        return Proxy { aabb, is_static };
     }
-    Proxy { aabb, is_static: b.body_type == BodyType::Static }
+    let (vmax, wmax) = (ctx.max_linear_speed, ctx.max_angular_speed);
+    let v = b.linear_velocity;
+    let (dx, dy) = (v.x.clamp(-vmax, vmax) * ctx.dt, v.y.clamp(-vmax, vmax) * ctx.dt);
+    let turn = b.angular_velocity.abs().min(wmax) * b.radius * ctx.dt;
+    let mut aabb = match SPECULATIVE_DISTANCE.checked_add(turn) {
+        Some(margin) if in_order && turn >= Scalar::ZERO => grown(margin),
+        _ => bx.expand(SPECULATIVE_DISTANCE).expand(turn),
+    };
+    aabb.min += Vector2::new(dx.min(Scalar::ZERO), dy.min(Scalar::ZERO));
+    aabb.max += Vector2::new(dx.max(Scalar::ZERO), dy.max(Scalar::ZERO));
+    Proxy { aabb, is_static }
 }
 
 /// The contact manifold of shape `sa` of body `a` and shape `sb` of body

@@ -160,6 +160,95 @@ impl PairSink<'_> {
     }
 }
 
+/// Sorts `pairs[..len]` by (lower slot, higher slot), the order of the
+/// tuples, and returns it.
+///
+/// When the rest of `pairs` has room for one entry per slot up to the
+/// largest lower slot, the pairs are first moved into one bucket per lower
+/// slot in place (a counting sort, O(len + slots), with the buckets' bounds
+/// kept in that room), then each bucket, a handful of pairs, is sorted by
+/// the higher slot. Otherwise the library's sort does it. Either way the
+/// result is the same sorted slice.
+pub(crate) fn sort_pairs(pairs: &mut [(u32, u32)], len: usize) -> &mut [(u32, u32)] {
+    let len = len.min(pairs.len());
+    let (data, rest) = pairs.split_at_mut(len);
+    let top = data.iter().fold(0u32, |m, p| m.max(p.0)) as usize;
+    let Some(buckets) = rest.get_mut(..=top) else {
+        data.sort_unstable_by_key(|&(a, b)| (u64::from(a) << 32) | u64::from(b));
+        return data;
+    };
+    // Each bucket's (next free position, end).
+    buckets.fill((0, 0));
+    for p in data.iter() {
+        if let Some(b) = buckets.get_mut(p.0 as usize) {
+            b.1 = b.1.wrapping_add(1);
+        }
+    }
+    let mut end = 0u32;
+    for b in buckets.iter_mut() {
+        (b.0, end) = (end, end.wrapping_add(b.1));
+        b.1 = end;
+    }
+    // Fill bucket after bucket: the pair at a bucket's next free position
+    // stays if it belongs there, or is swapped to its own bucket's.
+    for d in 0..buckets.len() {
+        while let Some(&(h, e)) = buckets.get(d) {
+            let Some(&x) = data.get(h as usize).filter(|_| h < e) else { break };
+            let to = x.0 as usize;
+            if to == d {
+                if let Some(b) = buckets.get_mut(d) {
+                    b.0 = h.wrapping_add(1);
+                }
+                continue;
+            }
+            let Some(b) = buckets.get_mut(to) else { break };
+            let t = b.0;
+            b.0 = t.wrapping_add(1);
+            let Some(&y) = data.get(t as usize) else { break };
+            if let Some(at_h) = data.get_mut(h as usize) {
+                *at_h = y;
+            }
+            if let Some(at_t) = data.get_mut(t as usize) {
+                *at_t = x;
+            }
+        }
+    }
+    // Each bucket by the higher slot.
+    let mut start = 0usize;
+    for &(_, e) in buckets.iter() {
+        let e = e as usize;
+        if let Some(bucket) = data.get_mut(start..e) {
+            if bucket.len() <= 16 {
+                insertion_sort(bucket);
+            } else {
+                bucket.sort_unstable();
+            }
+        }
+        start = e;
+    }
+    data
+}
+
+/// Sorts a short slice (one bucket of [`sort_pairs`]).
+fn insertion_sort(v: &mut [(u32, u32)]) {
+    for k in 1..v.len() {
+        let Some(&x) = v.get(k) else { break };
+        let mut j = k;
+        while let Some(&y) = v.get(j.wrapping_sub(1)) {
+            if y <= x {
+                break;
+            }
+            if let Some(slot) = v.get_mut(j) {
+                *slot = y;
+            }
+            j -= 1;
+        }
+        if let Some(slot) = v.get_mut(j) {
+            *slot = x;
+        }
+    }
+}
+
 /// Removes adjacent duplicates of a sorted slice in place; returns the new length.
 pub(crate) fn dedup_sorted(v: &mut [(u32, u32)]) -> usize {
     let mut n = 0usize;
@@ -246,6 +335,30 @@ mod tests {
     fn duplicates_and_self_pairs_use_no_capacity() {
         let reports = [(1, 2), (2, 1), (3, 3), (1, 2), (0, 4), (4, 0), (1, 2)];
         assert_eq!(kept(2, &reports), (std::vec![(0, 4), (1, 2)], 0));
+    }
+
+    #[test]
+    fn sort_pairs_sorts_with_or_without_room() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        for len in [0usize, 1, 2, 7, 20, 40] {
+            let mut pairs = [(0u32, 0u32); 64];
+            for p in pairs.iter_mut().take(len) {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                // Few lower slots (long buckets) and some duplicates.
+                let (a, b) = ((x % 5) as u32 * 3, (x >> 8) as u32 % 24);
+                *p = (a.min(b), a.max(b));
+            }
+            let mut expected = pairs;
+            expected[..len].sort_unstable();
+            // 64 slots leave room for the buckets; a slice of `len` has none.
+            for room in [64, len] {
+                let mut got = pairs;
+                let sorted = sort_pairs(&mut got[..room], len);
+                assert_eq!(sorted, &expected[..len], "len {len}, room {room}");
+            }
+        }
     }
 
     #[test]
