@@ -22,6 +22,7 @@ use crate::collide::{
     collide_capsule_circle, collide_capsules, collide_chain_segment_capsule, collide_chain_segment_circle,
     collide_chain_segment_polygon, collide_circles, collide_polygon_capsule, collide_polygon_circle,
     collide_polygons, collide_segment_capsule, collide_segment_circle, collide_segment_polygon, Manifold,
+    ManifoldPoint,
 };
 use crate::compound::{is_compound, shape_of, shapes_of, BodyShape, ShapeData, MAX_SHAPES_PER_BODY};
 use crate::constraint::{Joint, JointMarker};
@@ -936,7 +937,9 @@ fn lifecycle(
             arb.state = if resolve { ArbiterState::Contact } else { ArbiterState::Ignoring };
         }
         if arb.state == ArbiterState::Contact {
-            arb.solve = handlers.get(arb.level_a, arb.level_b).is_none_or(|h| h.pre_solve(arb, ctx));
+            // No handler at all (the common case): solved, without the lookup.
+            arb.solve = handlers.is_empty()
+                || handlers.get(arb.level_a, arb.level_b).is_none_or(|h| h.pre_solve(arb, ctx));
         }
         return true;
     }
@@ -968,33 +971,35 @@ fn lifecycle(
 fn set_manifold(arb: &mut Arbiter, old: Option<&Arbiter>, m: &Manifold) {
     let src = m.points();
     let prev: &Arbiter = old.unwrap_or(&*arb);
-    let old_count = usize::from(prev.count);
-    let carried = |k: usize| {
-        let s = src.get(k)?;
-        let o = prev.points.iter().take(old_count).find(|o| o.id == s.id)?;
-        Some((o.normal_impulse, o.tangent_impulse))
+    // The first of the previous step's points (at most its count) with
+    // this feature id: its impulses, else none (zero).
+    let [o0, o1] = &prev.points;
+    let old_count = prev.count;
+    let carry = |id: u16| {
+        if old_count >= 1 && o0.id == id {
+            (o0.normal_impulse, o0.tangent_impulse)
+        } else if old_count >= 2 && o1.id == id {
+            (o1.normal_impulse, o1.tangent_impulse)
+        } else {
+            (ZERO_SCALAR, ZERO_SCALAR)
+        }
     };
-    let carried = [carried(0), carried(1)];
+    let new_point = |s: &ManifoldPoint, (normal_impulse, tangent_impulse): (Scalar, Scalar)| ContactPoint {
+        point: s.point,
+        separation: s.separation,
+        id: s.id,
+        normal_impulse,
+        tangent_impulse,
+        total_normal_impulse: ZERO_SCALAR,
+        max_normal_impulse: ZERO_SCALAR,
+        anchor_a: s.anchor_a,
+        anchor_b: s.anchor_b,
+        approach: 0,
+    };
     let empty = Arbiter::EMPTY.points[0];
-    for (k, (dst, carry)) in arb.points.iter_mut().zip(carried).enumerate() {
-        *dst = match src.get(k) {
-            Some(s) => {
-                let (normal_impulse, tangent_impulse) =
-                    carry.unwrap_or((empty.normal_impulse, empty.tangent_impulse));
-                ContactPoint {
-                    point: s.point,
-                    separation: s.separation,
-                    id: s.id,
-                    normal_impulse,
-                    tangent_impulse,
-                    anchor_a: s.anchor_a,
-                    anchor_b: s.anchor_b,
-                    ..empty
-                }
-            }
-            None => empty,
-        };
-    }
+    let p0 = src.first().map_or(empty, |s| new_point(s, carry(s.id)));
+    let p1 = src.get(1).map_or(empty, |s| new_point(s, carry(s.id)));
+    arb.points = [p0, p1];
     arb.count = m.count.min(2) as u8;
     arb.normal = m.normal;
 }
