@@ -13,7 +13,7 @@ use managed::ManagedSlice;
 use crate::hook::Hook;
 
 use crate::arbiter::{
-    mix_friction, mix_restitution, sub_key, Arbiter, ArbiterState, ArbiterStore, ContactPoint,
+    mix_friction, mix_restitution, sub_key, Arbiter, ArbiterState, ArbiterStore, ContactPoint, MAX_LINK,
     MAX_SHAPE_INDEX,
 };
 use crate::arena::Arena;
@@ -22,6 +22,7 @@ use crate::collide::{
     collide_capsule_circle, collide_capsules, collide_chain_segment_capsule, collide_chain_segment_circle,
     collide_chain_segment_polygon, collide_circles, collide_polygon_capsule, collide_polygon_circle,
     collide_polygons, collide_segment_capsule, collide_segment_circle, collide_segment_polygon, Manifold,
+    ManifoldPoint,
 };
 use crate::compound::{is_compound, shape_of, shapes_of, BodyShape, ShapeData, MAX_SHAPES_PER_BODY};
 use crate::constraint::{Joint, JointMarker};
@@ -410,10 +411,10 @@ fn update_pair<S: ShapeData>(
 ) -> bool {
     let PairPass { ctx, bodies, paths, handlers, post_step, events } = pass;
     let (ha, ba, sx) = (x.0, x.1, x.2);
-    let (bb, sy) = (y.1, y.2);
-    pair_arbiter(x, y, link, previous, arb);
-    let (a, b, sa, sb) = if arb.body_a == ha { (ba, bb, sx, sy) } else { (bb, ba, sy, sx) };
-    if sa.senses() || sb.senses() {
+    let (hb, bb, sy) = (y.0, y.1, y.2);
+    if sx.senses() || sy.senses() {
+        pair_arbiter(x, y, link, previous, arb);
+        let (a, b, sa, sb) = if arb.body_a == ha { (ba, bb, sx, sy) } else { (bb, ba, sy, sx) };
         // Overlap is judged after the solve ([`touch_events`]); a sensor
         // pair is kept while its boxes meet or it overlaps, never solved.
         arb.solve = false;
@@ -421,21 +422,50 @@ fn update_pair<S: ShapeData>(
         arb.set_touching(false);
         return (candidate && wants_shapes(a, sa, b, sb)) || arb.state == ArbiterState::Contact;
     }
+    // The previous arbiter when it names these same bodies (as
+    // [`pair_arbiter`] decides), and the body order the arbiter has.
+    let same = previous.filter(|p| (p.body_a == ha && p.body_b == hb) || (p.body_a == hb && p.body_b == ha));
+    let x_first = match same {
+        Some(p) => p.body_a == ha,
+        None => sy.geometry().kind_rank() >= sx.geometry().kind_rank(),
+    };
+    let (a, b, sa, sb) = if x_first { (ba, bb, sx, sy) } else { (bb, ba, sy, sx) };
     // Contact points only within the speculative distance: the boxes
     // (stretched along the motion for continuous collision) found the
     // pair; the narrow phase runs only when the bodies' own boxes are
     // that close (for compound bodies, the key stream checked the shapes').
     let near = boxes_within(a.aabb, b.aabb, SPECULATIVE_DISTANCE);
     let manifold = if candidate && near && wants_shapes(a, sa, b, sb) {
-        collide_body_shapes((a, sa), (b, sb), paths, arb.link(), SPECULATIVE_DISTANCE)
+        let arb_link = same.map_or(link.min(MAX_LINK), Arbiter::link);
+        collide_body_shapes((a, sa), (b, sb), paths, arb_link, SPECULATIVE_DISTANCE)
     } else {
         Manifold::EMPTY
+    };
+    // An ongoing pair that touches has its points, normal, count, mixed
+    // material and solve flag all rewritten: only the rest of the record
+    // is carried over, and the warm start reads the previous points where
+    // they are (no whole-record copy).
+    let old = match same {
+        Some(p) if manifold.count > 0 => {
+            arb.body_a = p.body_a;
+            arb.body_b = p.body_b;
+            arb.level_a = p.level_a;
+            arb.level_b = p.level_b;
+            arb.state = p.state;
+            arb.steps_and_link = p.steps_and_link;
+            arb.flags = p.flags;
+            Some(p)
+        }
+        _ => {
+            pair_arbiter(x, y, link, previous, arb);
+            None
+        }
     };
     let ((fa, ra), (fb, rb)) = (sa.material(), sb.material());
     arb.friction = mix_friction(fa, fb);
     arb.restitution = mix_restitution(ra, rb);
     let mut ctx_cb = CallbackContext { bodies, post_step: post_step.view() };
-    if lifecycle(arb, &manifold, handlers, &mut ctx_cb, ctx.arbiter_persistence, events) {
+    if lifecycle(arb, old, &manifold, handlers, &mut ctx_cb, ctx.arbiter_persistence, events) {
         if arb.count > 0 && arb.state == ArbiterState::Contact && !arb.is_touching() {
             approach(arb, a, b);
         }
@@ -481,10 +511,20 @@ impl<'c, 'b, 'a> CandidateKeys<'c, 'b, 'a> {
         self.current
     }
 
+    #[inline(always)]
     fn advance(&mut self) {
         if self.single {
-            // The pair's only key: on to the next pair.
+            // The pair's only key: on to the next pair, inline when that is
+            // a single-key pair too (the common case).
             self.i = self.i.saturating_add(1);
+            if let Some(&(x, y)) = self.pairs.get(self.i) {
+                if let (Some(bx), Some(by)) = (self.bodies.get_at(x), self.bodies.get_at(y)) {
+                    if single_key(bx) && single_key(by) {
+                        self.current = Some((x, y, 0));
+                        return;
+                    }
+                }
+            }
             self.current = self.key_at_or_after(None);
             return;
         }
@@ -875,9 +915,12 @@ pub(crate) fn end_arbiters_of_shape(
     });
 }
 
-/// Runs one pair's lifecycle for this step. Returns whether to keep the arbiter.
+/// Runs one pair's lifecycle for this step (`old`: where the previous
+/// points are, see [`set_manifold`]). Returns whether to keep the arbiter.
+#[inline(always)]
 fn lifecycle(
     arb: &mut Arbiter,
+    old: Option<&Arbiter>,
     m: &Manifold,
     handlers: &mut HandlerTable<'_>,
     ctx: &mut CallbackContext<'_>,
@@ -886,7 +929,7 @@ fn lifecycle(
 ) -> bool {
     arb.solve = false;
     if m.count > 0 {
-        set_manifold(arb, m);
+        set_manifold(arb, old, m);
         arb.reset_steps_separated();
         if matches!(arb.state, ArbiterState::NoCollision | ArbiterState::Separated) {
             arb.state = ArbiterState::FirstContact;
@@ -894,7 +937,9 @@ fn lifecycle(
             arb.state = if resolve { ArbiterState::Contact } else { ArbiterState::Ignoring };
         }
         if arb.state == ArbiterState::Contact {
-            arb.solve = handlers.get(arb.level_a, arb.level_b).is_none_or(|h| h.pre_solve(arb, ctx));
+            // No handler at all (the common case): solved, without the lookup.
+            arb.solve = handlers.is_empty()
+                || handlers.get(arb.level_a, arb.level_b).is_none_or(|h| h.pre_solve(arb, ctx));
         }
         return true;
     }
@@ -918,38 +963,43 @@ fn lifecycle(
 }
 
 /// Copies a manifold into the arbiter, carrying the accumulated impulses of
-/// points whose feature id persists (warm starting). Written in place: the
-/// impulses carried over are read before any point is overwritten, and each
-/// point is then written whole (a point past the manifold's count is cleared).
-fn set_manifold(arb: &mut Arbiter, m: &Manifold) {
+/// points whose feature id persists (warm starting) from the points of `old`
+/// (the previous step's record, when the caller did not copy it into `arb`)
+/// or else of `arb` itself. Written in place: the impulses carried over are
+/// read before any point is overwritten, and each point is then written
+/// whole (a point past the manifold's count is cleared).
+fn set_manifold(arb: &mut Arbiter, old: Option<&Arbiter>, m: &Manifold) {
     let src = m.points();
-    let old_count = usize::from(arb.count);
-    let carried = |k: usize| {
-        let s = src.get(k)?;
-        let o = arb.points.iter().take(old_count).find(|o| o.id == s.id)?;
-        Some((o.normal_impulse, o.tangent_impulse))
+    let prev: &Arbiter = old.unwrap_or(&*arb);
+    // The first of the previous step's points (at most its count) with
+    // this feature id: its impulses, else none (zero).
+    let [o0, o1] = &prev.points;
+    let old_count = prev.count;
+    let carry = |id: u16| {
+        if old_count >= 1 && o0.id == id {
+            (o0.normal_impulse, o0.tangent_impulse)
+        } else if old_count >= 2 && o1.id == id {
+            (o1.normal_impulse, o1.tangent_impulse)
+        } else {
+            (ZERO_SCALAR, ZERO_SCALAR)
+        }
     };
-    let carried = [carried(0), carried(1)];
+    let new_point = |s: &ManifoldPoint, (normal_impulse, tangent_impulse): (Scalar, Scalar)| ContactPoint {
+        point: s.point,
+        separation: s.separation,
+        id: s.id,
+        normal_impulse,
+        tangent_impulse,
+        total_normal_impulse: ZERO_SCALAR,
+        max_normal_impulse: ZERO_SCALAR,
+        anchor_a: s.anchor_a,
+        anchor_b: s.anchor_b,
+        approach: 0,
+    };
     let empty = Arbiter::EMPTY.points[0];
-    for (k, (dst, carry)) in arb.points.iter_mut().zip(carried).enumerate() {
-        *dst = match src.get(k) {
-            Some(s) => {
-                let (normal_impulse, tangent_impulse) =
-                    carry.unwrap_or((empty.normal_impulse, empty.tangent_impulse));
-                ContactPoint {
-                    point: s.point,
-                    separation: s.separation,
-                    id: s.id,
-                    normal_impulse,
-                    tangent_impulse,
-                    anchor_a: s.anchor_a,
-                    anchor_b: s.anchor_b,
-                    ..empty
-                }
-            }
-            None => empty,
-        };
-    }
+    let p0 = src.first().map_or(empty, |s| new_point(s, carry(s.id)));
+    let p1 = src.get(1).map_or(empty, |s| new_point(s, carry(s.id)));
+    arb.points = [p0, p1];
     arb.count = m.count.min(2) as u8;
     arb.normal = m.normal;
 }
