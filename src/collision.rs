@@ -424,10 +424,10 @@ fn update_pair<S: ShapeData>(
     }
     // The previous arbiter when it names these same bodies (as
     // [`pair_arbiter`] decides), and the body order the arbiter has.
-    let same = previous.filter(|p| (p.body_a == ha && p.body_b == hb) || (p.body_a == hb && p.body_b == ha));
+    let same = same_pair(previous, ha, hb);
     let x_first = match same {
         Some(p) => p.body_a == ha,
-        None => sy.geometry().kind_rank() >= sx.geometry().kind_rank(),
+        None => first_in_new(sx, sy),
     };
     let (a, b, sa, sb) = if x_first { (ba, bb, sx, sy) } else { (bb, ba, sy, sx) };
     // Contact points only within the speculative distance: the boxes
@@ -1010,6 +1010,21 @@ fn live_at<'b>(bodies: &'b Arena<'_, Body>, index: u32) -> Option<(BodyHandle, &
     Some((bodies.handle_at(index)?, bodies.get_at(index)?))
 }
 
+/// The previous arbiter when it names bodies `ha` and `hb` (in either order):
+/// the pair's arbiter carries on with its body order.
+#[inline(always)]
+fn same_pair(previous: Option<&Arbiter>, ha: BodyHandle, hb: BodyHandle) -> Option<&Arbiter> {
+    previous.filter(|p| (p.body_a == ha && p.body_b == hb) || (p.body_a == hb && p.body_b == ha))
+}
+
+/// Whether shape `sx` (of the key's lower slot) is body A of a new arbiter:
+/// the manual's order, the shape of the smaller kind first (circles before
+/// polygons), the key order breaking ties.
+#[inline(always)]
+fn first_in_new<S: ShapeData>(sx: &S, sy: &S) -> bool {
+    sy.geometry().kind_rank() >= sx.geometry().kind_rank()
+}
+
 /// Writes the arbiter for shape `x.3` of live body `x` and shape `y.3` of
 /// live body `y` (lower slot first) into `out`: the previous one if it names
 /// these same bodies (a body removed and a new one in its slot has a new
@@ -1023,19 +1038,12 @@ fn pair_arbiter<S: ShapeData>(
     out: &mut Arbiter,
 ) {
     let ((ha, a, sa, ia), (hb, b, sb, ib)) = (x, y);
-    if let Some(p) = previous {
-        if (p.body_a == ha && p.body_b == hb) || (p.body_a == hb && p.body_b == ha) {
-            *out = *p;
-            return;
-        }
+    if let Some(p) = same_pair(previous, ha, hb) {
+        *out = *p;
+        return;
     }
-    // The manual's order: the shape of the smaller kind first (circles
-    // before polygons); the key order breaks ties.
-    let ((first, fa, fi), (second, fb, si)) = if sb.geometry().kind_rank() < sa.geometry().kind_rank() {
-        ((hb, b, ib), (ha, a, ia))
-    } else {
-        ((ha, a, ia), (hb, b, ib))
-    };
+    let ((first, fa, fi), (second, fb, si)) =
+        if first_in_new(sa, sb) { ((ha, a, ia), (hb, b, ib)) } else { ((hb, b, ib), (ha, a, ia)) };
     *out = Arbiter {
         body_a: first,
         body_b: second,
