@@ -45,7 +45,7 @@
 //! whose box now lies outside its broad-phase box (its velocity changed a lot
 //! in the step) is swept against every body whose box meets its path instead.
 
-use crate::arbiter::ArbiterStore;
+use crate::arbiter::{ArbiterState, ArbiterStore};
 use crate::arena::Arena;
 use crate::body::{compute_aabb, Body, BodyType, Shape, ShapeStore};
 use crate::collide::{time_of_impact, Swept};
@@ -247,12 +247,21 @@ impl Pass<'_, '_> {
         if filter && self.held.binary_search(&key).is_ok() {
             return None;
         }
-        // A pair the game chose not to solve this step is not stopped either.
-        // (For a chain or compound bodies, when none of the pair's arbiters is solved.)
+        // A pair the game chose not to solve this step is not stopped either:
+        // one of its arbiters refused (`begin` said no, or `pre_solve` did for
+        // points it has) and none is solved (a chain or compound bodies have
+        // several). An arbiter without points carries no such choice: one kept
+        // after its bodies parted, beside a link the body left, must not let it
+        // pass through another link.
         let live = self.arbiters.live();
         let first = live.partition_point(|a| a.pair() < key);
-        let mut pair = live.get(first..).unwrap_or(&[]).iter().take_while(|a| a.pair() == key).peekable();
-        if pair.peek().is_some() && pair.all(|a| !a.solve) {
+        let pair = live.get(first..).unwrap_or(&[]).iter().take_while(|a| a.pair() == key);
+        let (mut solved, mut refused) = (false, false);
+        for a in pair {
+            solved |= a.solve;
+            refused |= a.state == ArbiterState::Ignoring || (a.count > 0 && !a.solve);
+        }
+        if refused && !solved {
             return None;
         }
         let xf = Transform::new(sf.p0, sf.q0);

@@ -28,11 +28,11 @@ pub const GOLDEN_PYRAMID: u64 = 0xf9e0_85eb_1d4b_51ae;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_MIXED: u64 = 0x34db_5832_2d28_135e;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_LONG: u64 = 0x32c0_7710_8c24_8fc0;
+pub const GOLDEN_LONG: u64 = 0x902a_2914_90cc_2329;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_SHAPES: u64 = 0x3beb_d851_b68b_9a45;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_COMPOUND: u64 = 0x27db_ea67_c1c6_25da;
+pub const GOLDEN_COMPOUND: u64 = 0x3a85_4847_1c64_93f9;
 
 /// Steps of the core scene.
 pub const CORE_STEPS: u32 = 600;
