@@ -26,13 +26,13 @@ pub const GOLDEN_CORE_SCENE: u64 = 0xcf9d_fe17_bb39_8801;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_PYRAMID: u64 = 0xf9e0_85eb_1d4b_51ae;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_MIXED: u64 = 0x34db_5832_2d28_135e;
+pub const GOLDEN_MIXED: u64 = 0xd6cb_b270_bb8f_4e0a;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_LONG: u64 = 0x902a_2914_90cc_2329;
+pub const GOLDEN_LONG: u64 = 0xa937_0cb0_9220_a930;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_SHAPES: u64 = 0x3beb_d851_b68b_9a45;
+pub const GOLDEN_SHAPES: u64 = 0xfa1a_5b03_5a82_ad3a;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_COMPOUND: u64 = 0x3a85_4847_1c64_93f9;
+pub const GOLDEN_COMPOUND: u64 = 0x5e4f_70f9_0d16_7d61;
 
 /// Steps of the core scene.
 pub const CORE_STEPS: u32 = 600;
