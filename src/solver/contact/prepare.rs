@@ -176,11 +176,12 @@ impl Pair {
         let bits = |x: Scalar| x.to_bits().max(0).unsigned_abs();
         let (ma, mb, ja, jb) = (bits(a.m), bits(b.m), bits(a.j), bits(b.j));
         let sum = ma.saturating_add(mb).saturating_add(ja).saturating_add(jb);
-        // The sum's top bit lands on bit 30 (one guard bit below 2³¹).
+        // The sum's top bit lands on bit 30 (one guard bit below 2³¹). Each
+        // term is at most the (saturating) sum, which is below 2^(31 + shift),
+        // so every scaled term is below 2³¹ without a clamp (0 if the sum is).
         let shift = 33 - sum.leading_zeros() as i32;
         let scale = |x: u64| -> i64 {
-            let s = if shift >= 0 { x >> shift.unsigned_abs() } else { x << shift.unsigned_abs() };
-            (s as i64).min(1 << 31)
+            (if shift >= 0 { x >> shift.unsigned_abs() } else { x << shift.unsigned_abs() }) as i64
         };
         let down = (48 - shift).clamp(1, 126).unsigned_abs();
         Self { m: [scale(ma), scale(mb)], j: [scale(ja), scale(jb)], shift, down, half: 1 << (down - 1) }
@@ -299,50 +300,43 @@ fn point<const BASE: usize>(c: &Shared, src: &ContactPoint, blk: &mut Block, l: 
     let lambda_max = i64::from(lanes::LAMBDA_MAX);
     let phi_max = ((PHI_MAX - 1) << lanes::FPHI).unsigned_abs();
     let (aa, ab) = (c.side_a.anchor(src.anchor_a), c.side_b.anchor(src.anchor_b));
+    // Each field is stored as soon as it is known: fewer values live at once,
+    // fewer spills (about 40 instructions an arbiter: large scene, 20 steps,
+    // 2,542.5 → 2,529.6 M).
+    let mut put_at = |x: usize, v: i64| put(blk, BASE + x, l, v);
     let (ran, rbn, rat, rbt) = (arm(aa, n), arm(ab, n), arm(aa, t), arm(ab, t));
+    put_at(f::RAN, ran);
+    put_at(f::RBN, rbn);
+    put_at(f::RAT, rat);
+    put_at(f::RBT, rbt);
     let (k_n, k_t) = (pair.k(ran, rbn), pair.k(rat, rbt));
     let (r_n, r_t) = (recip60(k_n), recip60(k_t));
-    let [anx, any, bnx, bny, gan, gbn] = row(pair, r_n, n, (ran, rbn));
-    let [atx, aty, btx, bty, gat, gbt] = row(pair, r_t, t, (rat, rbt));
-    let ln = pair.impulse(src.normal_impulse, k_n, lambda_max).max(0);
-    let lt = pair.impulse(src.tangent_impulse, k_t, lambda_max);
+    for (x, v) in
+        [f::ANX, f::ANY, f::BNX, f::BNY, f::GAN, f::GBN].into_iter().zip(row(pair, r_n, n, (ran, rbn)))
+    {
+        put_at(x, v);
+    }
+    for (x, v) in
+        [f::ATX, f::ATY, f::BTX, f::BTY, f::GAT, f::GBT].into_iter().zip(row(pair, r_t, t, (rat, rbt)))
+    {
+        put_at(x, v);
+    }
+    put_at(f::LN, pair.impulse(src.normal_impulse, k_n, lambda_max).max(0));
+    put_at(f::LT, pair.impulse(src.tangent_impulse, k_t, lambda_max));
     // |λ_t| ≤ μ·λ_n ⇔ |λ̂_t| ≤ μ·(k_t/k_n)·λ̂_n; φ·min(λ̂_n, c_φ) ≤ Λ.
     // k_t/k_n in Q2.30 (clamped at 2¹⁰), then μ (Q32.32) times it.
     // Both products are of non-negative factors (k̂, r̂, μ ≥ 0).
     let ratio =
         rnd_unsigned(u128::from(k_t.unsigned_abs()) * u128::from(r_n.unsigned_abs()), 60 - FU, 1 << 40);
     let phi = rnd_unsigned(c.friction * u128::from(ratio.unsigned_abs()), 32 + FU - lanes::FPHI, phi_max);
-    let c_phi = if phi > 1 << lanes::FPHI { (lambda_max << lanes::FPHI) / phi } else { lambda_max };
+    put_at(f::PHI, phi);
+    put_at(f::CPHI, if phi > 1 << lanes::FPHI { (lambda_max << lanes::FPHI) / phi } else { lambda_max });
+    put_at(f::BASE, lane(src.separation, FS, 4095));
     let dv = c.b.velocity_at_offset(src.anchor_b) - c.a.velocity_at_offset(src.anchor_a);
-    for (x, v) in [
-        (f::RAN, ran),
-        (f::RBN, rbn),
-        (f::RAT, rat),
-        (f::RBT, rbt),
-        (f::ANX, anx),
-        (f::ANY, any),
-        (f::BNX, bnx),
-        (f::BNY, bny),
-        (f::GAN, gan),
-        (f::GBN, gbn),
-        (f::ATX, atx),
-        (f::ATY, aty),
-        (f::BTX, btx),
-        (f::BTY, bty),
-        (f::GAT, gat),
-        (f::GBT, gbt),
-        (f::LN, ln),
-        (f::LT, lt),
-        (f::BASE, lane(src.separation, FS, 4095)),
-        (f::PHI, phi),
-        (f::CPHI, c_phi),
-        // [`lanes::velocity`]: saturated at the wall.
-        (f::VREL, lane(dv.dot(c.normal), lanes::FV, 2048)),
-        (f::MAXD, 0),
-        (f::TOT, 0),
-    ] {
-        put(blk, BASE + x, l, v);
-    }
+    // [`lanes::velocity`]: saturated at the wall.
+    put_at(f::VREL, lane(dv.dot(c.normal), lanes::FV, 2048));
+    put_at(f::MAXD, 0);
+    put_at(f::TOT, 0);
     PointOut { k_n, r_n, arms_n: (ran, rbn), masses: [pair.mass(r_n), pair.mass(r_t)] }
 }
 
