@@ -129,6 +129,35 @@ pub(crate) fn half(x: Scalar) -> Scalar {
     Scalar::from_bits(x.to_bits() >> 1)
 }
 
+/// Whether `|a| < 1`: then [`mul_below_one`] by `a` is the saturating
+/// product's value, whatever the other factor.
+#[inline(always)]
+pub(crate) fn below_one(a: Scalar) -> bool {
+    a.to_bits().unsigned_abs() < 1 << 32
+}
+
+/// `a * b` for `|a| < 1` (see [`below_one`]): the same bits as the
+/// saturating product, without its test for saturation.
+///
+/// That product is bits 32..96 of the exact 128-bit product, saturated when
+/// they do not fit an `i64`. With `|a| < 2³²` and `|b| ≤ 2⁶³` in bits,
+/// `|a·b| < 2⁹⁵`, so `⌊a·b / 2³²⌋` lies in `[−2⁶³, 2⁶³)`: it always fits, and
+/// the shift alone gives it. Face normals off the axes and the rotations of
+/// turned bodies have both components below 1; their products are most of
+/// those in the polygon narrow phase.
+#[inline(always)]
+pub(crate) fn mul_below_one(a: Scalar, b: Scalar) -> Scalar {
+    let full = i128::from(a.to_bits()).wrapping_mul(i128::from(b.to_bits()));
+    Scalar::from_bits((full >> 32) as i64)
+}
+
+/// `n · d` for `n` with both components below 1 (see [`below_one`]): the same
+/// bits as [`Vector2::dot`], the two products without their saturation test.
+#[inline(always)]
+pub(crate) fn dot_below_one(n: Vector2, d: Vector2) -> Scalar {
+    mul_below_one(n.x, d.x) + mul_below_one(n.y, d.y)
+}
+
 /// The unit vector along `v` and the length of `v` (m), or `None` for the zero
 /// vector. Contact normals often come from very short vectors (nearly coincident
 /// circle centres, a circle centre just outside a corner); `Vector2` rescales by an
@@ -154,6 +183,36 @@ mod tests {
 
     fn unit_error(n: Vector2) -> Scalar {
         (n.length_squared() - ONE).abs()
+    }
+
+    #[test]
+    fn products_below_one_are_the_saturating_products() {
+        let edges =
+            [Scalar::MIN, Scalar::MAX, Scalar::ZERO, ONE, -ONE, Scalar::from_bits(1), Scalar::from_bits(-1)];
+        let below =
+            [Scalar::from_bits((1 << 32) - 1), Scalar::from_bits(1 - (1 << 32)), Scalar::ZERO, HALF, -HALF];
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x as i64
+        };
+        for k in 0..100_000usize {
+            let a = match below.get(k) {
+                Some(&a) => a,
+                None => Scalar::from_bits(next() % (1 << 32)),
+            };
+            let b = match edges.get(k % 16) {
+                Some(&b) => b,
+                None => Scalar::from_bits(next() >> (k % 40)),
+            };
+            assert!(below_one(a));
+            assert_eq!(mul_below_one(a, b), a * b, "{a:?} {b:?}");
+            let (n, d) = (Vector2::new(a, Scalar::from_bits(next() % (1 << 32))), Vector2::new(b, b));
+            assert_eq!(dot_below_one(n, d), n.dot(d));
+        }
+        assert!(!below_one(ONE) && !below_one(-ONE) && !below_one(Scalar::MIN));
     }
 
     #[test]

@@ -24,7 +24,10 @@
 //! The whole contact is computed in the reference polygon's local frame: the
 //! numbers stay of the size of the bodies, whatever their world position.
 
-use super::manifold::{direction_and_length, half, LocalPoint, Manifold, MAX_MANIFOLD_POINTS};
+use super::manifold::{
+    below_one, direction_and_length, dot_below_one, half, mul_below_one, LocalPoint, Manifold,
+    MAX_MANIFOLD_POINTS,
+};
 use super::{next_index, Direction};
 use crate::geometry::{PolygonPath, MAX_POLYGON_VERTICES};
 use crate::math::{Rot, Scalar, Transform, Vector2};
@@ -184,14 +187,34 @@ fn transform_vertices<'o>(
     xf: Transform,
     out: &'o mut [Vector2; MAX_POLYGON_VERTICES],
 ) -> &'o [Vector2] {
+    // A turned body's rotation has both components below 1: its products
+    // skip the saturation test (`mul_below_one`), the same bits. The test is
+    // made once, outside the products (as a test inside each product it
+    // saved nothing on the box pyramid); on the rollback scene this took
+    // `collide_polygons` from 87.2 to 78.8 M instructions in 180 steps.
+    if below_one(xf.q.c) && below_one(xf.q.s) {
+        transform_vertices_by(poly, xf, out, mul_below_one)
+    } else {
+        transform_vertices_by(poly, xf, out, |k, x| k * x)
+    }
+}
+
+/// [`transform_vertices`] with the product `mul`.
+#[inline(always)]
+fn transform_vertices_by<'o>(
+    poly: &PolygonPath,
+    xf: Transform,
+    out: &'o mut [Vector2; MAX_POLYGON_VERTICES],
+    mul: impl Fn(Scalar, Scalar) -> Scalar,
+) -> &'o [Vector2] {
     let count = poly.vertices().len().min(MAX_POLYGON_VERTICES);
     let (c, s, p) = (xf.q.c, xf.q.s, xf.p);
     if let ([v0, v1, v2, v3], [o0, o1, o2, o3, ..]) = (poly.vertices(), out.as_mut_slice()) {
         if v1.y == v0.y && v2.x == v1.x && v3.y == v2.y && v3.x == v0.x {
             // An axis-aligned rectangle: two x and two y coordinates, each
             // product taken once (8 instead of the loop's 10).
-            let ([cx0, sx0], [cx1, sx1]) = ([c * v0.x, s * v0.x], [c * v1.x, s * v1.x]);
-            let ([sy0, cy0], [sy1, cy1]) = ([s * v0.y, c * v0.y], [s * v2.y, c * v2.y]);
+            let ([cx0, sx0], [cx1, sx1]) = ([mul(c, v0.x), mul(s, v0.x)], [mul(c, v1.x), mul(s, v1.x)]);
+            let ([sy0, cy0], [sy1, cy1]) = ([mul(s, v0.y), mul(c, v0.y)], [mul(s, v2.y), mul(c, v2.y)]);
             // `Vector2 + p` written out by component (the same additions):
             // as four more `Vector2::add` calls here, the compiler stopped
             // inlining that function (13 instructions a call).
@@ -207,11 +230,11 @@ fn transform_vertices<'o>(
         // [c·x, s·x, s·y, c·y]
         let [cx, sx] = match prev {
             Some((u, k)) if u.x == v.x => [k[0], k[1]],
-            _ => [c * v.x, s * v.x],
+            _ => [mul(c, v.x), mul(s, v.x)],
         };
         let [sy, cy] = match prev {
             Some((u, k)) if u.y == v.y => [k[2], k[3]],
-            _ => [s * v.y, c * v.y],
+            _ => [mul(s, v.y), mul(c, v.y)],
         };
         *slot = Vector2::new(cx - sy, sx + cy) + p;
         prev = Some((*v, [cx, sx, sy, cy]));
@@ -310,6 +333,11 @@ fn max_separation_scan(poly: &PolygonPath, other: &[Vector2], towards: Vector2) 
             Direction::NegX => deepest_vertex(other, best, i, |w| -(w.x - v.x) + Scalar::ZERO),
             Direction::PosY => deepest_vertex(other, best, i, |w| Scalar::ZERO + (w.y - v.y)),
             Direction::NegY => deepest_vertex(other, best, i, |w| Scalar::ZERO + -(w.y - v.y)),
+            // A face off the axes has both components below 1: its products
+            // skip the saturation test (rollback scene: 47.6 -> 45.8 M).
+            Direction::Any(n) if below_one(n.x) && below_one(n.y) => {
+                deepest_vertex(other, best, i, |w| dot_below_one(n, w - *v))
+            }
             Direction::Any(n) => deepest_vertex(other, best, i, |w| n.dot(w - *v)),
         };
         let replaces = match best {
