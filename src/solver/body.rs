@@ -77,6 +77,12 @@ pub struct SolverBody {
     /// The radius rim speeds are measured at, and its inverse.
     pub(crate) radius: Scalar,
     pub(crate) inv_radius: Scalar,
+    /// The inverse mass a contact sees ([`inverse_mass`]) and the rim inverse
+    /// mass j = (I⁻¹·r_b)·r_b, for the contact prepare: two products and the
+    /// body's type tests once a body here, not once a side in every arbiter
+    /// (large scene, 20 steps: 2,523.3 → 2,508.4 M instructions).
+    pub(crate) inv_mass: Scalar,
+    pub(crate) rim_inv_mass: Scalar,
     /// This sub-step's share of the force generators' velocity change.
     pub(crate) force_dv: Vector2,
     pub(crate) force_dw: Scalar,
@@ -116,6 +122,8 @@ impl SolverBody {
         p0: Vector2::ZERO,
         radius: Scalar::ONE,
         inv_radius: Scalar::ONE,
+        inv_mass: ZERO,
+        rim_inv_mass: ZERO,
         force_dv: Vector2::ZERO,
         force_dw: ZERO,
         w_max: ZERO,
@@ -139,6 +147,7 @@ impl SolverBody {
         let radius = b.radius.max(MIN_RADIUS);
         let inv_radius = radius.recip();
         let dynamic = b.is_dynamic() && !b.out_of_bounds;
+        let (inv_mass, inv_inertia) = inverse_mass(b);
         let mut sb = Self {
             lane_ref: [0; 3],
             colours: 0,
@@ -151,6 +160,9 @@ impl SolverBody {
             p0: b.position,
             radius,
             inv_radius,
+            inv_mass,
+            // (I⁻¹·r_b)·r_b: r_b² of a small body would keep few bits.
+            rim_inv_mass: inv_inertia * radius * radius,
             force_dv: Vector2::ZERO,
             force_dw: ZERO,
             // `angular_speed_limit`, reusing the reciprocal of the radius.
