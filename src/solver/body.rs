@@ -102,6 +102,9 @@ pub struct SolverBody {
     pub(crate) moves: bool,
     /// Takes impulses (dynamic, in bounds): contacts change its velocity.
     pub(crate) dynamic: bool,
+    /// The lanes hold what [`push`](Self::push) last made of the `Scalar`
+    /// velocity (no [`pull`](Self::pull) has changed it since).
+    pub(crate) pushed: bool,
     /// Continuous collision's marks (see [`crate::continuous`]).
     pub(crate) ccd: u8,
     /// Continuous collision's earliest time of impact this step (1: none).
@@ -133,6 +136,7 @@ impl SolverBody {
         forced: false,
         moves: false,
         dynamic: false,
+        pushed: false,
         ccd: 0,
         toi: Scalar::ONE,
     };
@@ -173,6 +177,7 @@ impl SolverBody {
             forced: dynamic,
             moves: b.moved_by_step(),
             dynamic,
+            pushed: false,
             ccd: 0,
             toi: Scalar::ONE,
         };
@@ -205,6 +210,7 @@ impl SolverBody {
             self.v += Vector2::new(lanes::to_scalar(dx, FV), lanes::to_scalar(dy, FV));
             self.w += lanes::to_scalar(dw, FV) * self.inv_radius;
             self.lane_ref = [lane[VX], lane[VY], lane[W]];
+            self.pushed = false;
         }
     }
 
@@ -217,6 +223,7 @@ impl SolverBody {
         lane[VY] = lanes::velocity(self.v.y);
         lane[W] = lanes::velocity(self.w * self.radius);
         self.lane_ref = [lane[VX], lane[VY], lane[W]];
+        self.pushed = true;
     }
 
     /// Damps the velocity and adds this sub-step's share of the forces:
@@ -240,9 +247,17 @@ impl SolverBody {
     #[inline]
     pub(crate) fn integrate(&mut self, h: Scalar, vmax: Scalar, lane: &mut BodyLanes) {
         self.pull(lane);
-        self.v = Vector2::new(self.v.x.clamp(-vmax, vmax), self.v.y.clamp(-vmax, vmax));
-        self.w = self.w.clamp(-self.w_max, self.w_max);
-        self.push(lane);
+        let v = Vector2::new(self.v.x.clamp(-vmax, vmax), self.v.y.clamp(-vmax, vmax));
+        let w = self.w.clamp(-self.w_max, self.w_max);
+        // A body nothing moved since its last push, within its limits, has
+        // those lanes already (the only other writer of the `Scalar`
+        // velocity, a joint's `apply_linear`, pushes every body it can move).
+        // Mixed scene: 955.2 → 948.2 M instructions; large 20: 2,503.3 →
+        // 2,497.3 M.
+        if !self.pushed || v != self.v || w != self.w {
+            (self.v, self.w) = (v, w);
+            self.push(lane);
+        }
         self.p += self.v * h;
         let turn = self.w * h;
         self.angle += turn;
