@@ -77,6 +77,12 @@ pub struct SolverBody {
     /// The radius rim speeds are measured at, and its inverse.
     pub(crate) radius: Scalar,
     pub(crate) inv_radius: Scalar,
+    /// The inverse mass a contact sees ([`inverse_mass`]) and the rim inverse
+    /// mass j = (I⁻¹·r_b)·r_b, for the contact prepare: two products and the
+    /// body's type tests once a body here, not once a side in every arbiter
+    /// (large scene, 20 steps: 2,523.3 → 2,508.4 M instructions).
+    pub(crate) inv_mass: Scalar,
+    pub(crate) rim_inv_mass: Scalar,
     /// This sub-step's share of the force generators' velocity change.
     pub(crate) force_dv: Vector2,
     pub(crate) force_dw: Scalar,
@@ -96,6 +102,9 @@ pub struct SolverBody {
     pub(crate) moves: bool,
     /// Takes impulses (dynamic, in bounds): contacts change its velocity.
     pub(crate) dynamic: bool,
+    /// The lanes hold what [`push`](Self::push) last made of the `Scalar`
+    /// velocity (no [`pull`](Self::pull) has changed it since).
+    pub(crate) pushed: bool,
     /// Continuous collision's marks (see [`crate::continuous`]).
     pub(crate) ccd: u8,
     /// Continuous collision's earliest time of impact this step (1: none).
@@ -116,6 +125,8 @@ impl SolverBody {
         p0: Vector2::ZERO,
         radius: Scalar::ONE,
         inv_radius: Scalar::ONE,
+        inv_mass: ZERO,
+        rim_inv_mass: ZERO,
         force_dv: Vector2::ZERO,
         force_dw: ZERO,
         w_max: ZERO,
@@ -125,6 +136,7 @@ impl SolverBody {
         forced: false,
         moves: false,
         dynamic: false,
+        pushed: false,
         ccd: 0,
         toi: Scalar::ONE,
     };
@@ -139,6 +151,7 @@ impl SolverBody {
         let radius = b.radius.max(MIN_RADIUS);
         let inv_radius = radius.recip();
         let dynamic = b.is_dynamic() && !b.out_of_bounds;
+        let (inv_mass, inv_inertia) = inverse_mass(b);
         let mut sb = Self {
             lane_ref: [0; 3],
             colours: 0,
@@ -151,6 +164,9 @@ impl SolverBody {
             p0: b.position,
             radius,
             inv_radius,
+            inv_mass,
+            // (I⁻¹·r_b)·r_b: r_b² of a small body would keep few bits.
+            rim_inv_mass: inv_inertia * radius * radius,
             force_dv: Vector2::ZERO,
             force_dw: ZERO,
             // `angular_speed_limit`, reusing the reciprocal of the radius.
@@ -161,6 +177,7 @@ impl SolverBody {
             forced: dynamic,
             moves: b.moved_by_step(),
             dynamic,
+            pushed: false,
             ccd: 0,
             toi: Scalar::ONE,
         };
@@ -193,6 +210,7 @@ impl SolverBody {
             self.v += Vector2::new(lanes::to_scalar(dx, FV), lanes::to_scalar(dy, FV));
             self.w += lanes::to_scalar(dw, FV) * self.inv_radius;
             self.lane_ref = [lane[VX], lane[VY], lane[W]];
+            self.pushed = false;
         }
     }
 
@@ -205,6 +223,7 @@ impl SolverBody {
         lane[VY] = lanes::velocity(self.v.y);
         lane[W] = lanes::velocity(self.w * self.radius);
         self.lane_ref = [lane[VX], lane[VY], lane[W]];
+        self.pushed = true;
     }
 
     /// Damps the velocity and adds this sub-step's share of the forces:
@@ -228,9 +247,17 @@ impl SolverBody {
     #[inline]
     pub(crate) fn integrate(&mut self, h: Scalar, vmax: Scalar, lane: &mut BodyLanes) {
         self.pull(lane);
-        self.v = Vector2::new(self.v.x.clamp(-vmax, vmax), self.v.y.clamp(-vmax, vmax));
-        self.w = self.w.clamp(-self.w_max, self.w_max);
-        self.push(lane);
+        let v = Vector2::new(self.v.x.clamp(-vmax, vmax), self.v.y.clamp(-vmax, vmax));
+        let w = self.w.clamp(-self.w_max, self.w_max);
+        // A body nothing moved since its last push, within its limits, has
+        // those lanes already (the only other writer of the `Scalar`
+        // velocity, a joint's `apply_linear`, pushes every body it can move).
+        // Mixed scene: 955.2 → 948.2 M instructions; large 20: 2,503.3 →
+        // 2,497.3 M.
+        if !self.pushed || v != self.v || w != self.w {
+            (self.v, self.w) = (v, w);
+            self.push(lane);
+        }
         self.p += self.v * h;
         let turn = self.w * h;
         self.angle += turn;

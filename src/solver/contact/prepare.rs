@@ -37,7 +37,6 @@ use crate::arbiter::{Arbiter, ContactPoint};
 use crate::body::Body;
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::Vector2;
-use crate::solver::body::inverse_mass;
 use crate::solver::lanes::{self, ARM_MAX, BLOCK_MAX, FM, FR, FS, FU, GAMMA_MAX, PHI_MAX};
 use crate::solver::SolverBody;
 
@@ -60,10 +59,8 @@ struct Side {
 
 impl Side {
     #[inline(always)]
-    fn new(b: &Body, sb: &SolverBody) -> Self {
-        let (m, i) = inverse_mass(b);
-        // (I⁻¹·r_b)·r_b: r_b² of a small body would keep few bits.
-        Self { m, j: i * sb.radius * sb.radius, inv_radius: sb.inv_radius }
+    fn new(sb: &SolverBody) -> Self {
+        Self { m: sb.inv_mass, j: sb.rim_inv_mass, inv_radius: sb.inv_radius }
     }
 
     /// An anchor in body radii (Q3.29), each component clamped to ±[`ARM_MAX`].
@@ -363,7 +360,7 @@ pub(crate) fn prepare(
     blk: &mut Block,
     l: usize,
 ) -> [[Scalar; 2]; 2] {
-    let (side_a, side_b) = (Side::new(a, sa), Side::new(b, sb));
+    let (side_a, side_b) = (Side::new(sa), Side::new(sb));
     let pair = Pair::new(&side_a, &side_b);
     let unit = |x: Scalar| lane(x, FU, 1);
     let n = [unit(arb.normal.x), unit(arb.normal.y)];
