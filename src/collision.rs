@@ -153,6 +153,9 @@ pub(crate) fn wants_shapes<S: ShapeData>(a: &Body, sa: &S, b: &Body, sb: &S) -> 
 
 /// True when two bodies have a pair of shapes the engine tracks
 /// ([`wants_shapes`]; for one-shape bodies [`wants_pair`]).
+// Out of line: inlined, its shape copies gave the broad phase's filter
+// closure, called once per reported pair, a 3.6 KB stack frame to set up.
+#[inline(never)]
 fn wants_bodies(a: &Body, b: &Body, shapes: &ShapeStore<'_>) -> bool {
     if !is_compound(a) && !is_compound(b) {
         return wants_pair(a, b);
@@ -279,7 +282,10 @@ pub(crate) fn broad_phase(
     // manual's filter, not held apart by a joint.
     let accept = |sa: u32, sb: u32| {
         let (Some(a), Some(b)) = (bodies.get_at(sa), bodies.get_at(sb)) else { return false };
-        wants_bodies(a, b, shapes) && held_pairs.binary_search(&(sa, sb)).is_err()
+        // One-shape bodies (the common case) go straight to `wants_pair`.
+        let wanted =
+            if !is_compound(a) && !is_compound(b) { wants_pair(a, b) } else { wants_bodies(a, b, shapes) };
+        wanted && held_pairs.binary_search(&(sa, sb)).is_err()
     };
     let mut sink = PairSink::new(pairs, slots, ctx.strict_capacity, &accept);
     match index {
@@ -1071,7 +1077,9 @@ fn pair_arbiter<S: ShapeData>(
 /// that sum does not overflow (saturating subtraction and addition of
 /// non-negative amounts), so such a box is grown once, inline, to the same
 /// bits as `expand(SPECULATIVE_DISTANCE).expand(turn)`.
-#[inline]
+// Always inlined into `broad_phase`'s two refill loops: out of line it was a
+// call per body each step, its box returned through the stack.
+#[inline(always)]
 fn proxy(ctx: &StepContext, b: &Body) -> Proxy {
     let is_static = b.body_type == BodyType::Static;
     let bx = b.aabb;

@@ -109,6 +109,14 @@ impl SortAndSweepIndex<'_> {
         let n = proxies.len().min(slots.len());
         if presorted {
             for k in 1..n {
+                // Mostly in order already: a look at the two keys, no copy.
+                if let (Some(q), Some(&t), Some(p), Some(&s)) =
+                    (proxies.get(k - 1), slots.get(k - 1), proxies.get(k), slots.get(k))
+                {
+                    if key(q, t) <= key(p, s) {
+                        continue;
+                    }
+                }
                 let (Some(&p), Some(&s)) = (proxies.get(k), slots.get(k)) else { break };
                 let kk = key(&p, s);
                 let mut j = k;
