@@ -2,7 +2,7 @@
 //!
 //! The design is Box2D v3's "soft step" (Erin Catto, *Solver2D*, 2024), written
 //! here for fixed point. Before the sub-steps, an impact pass resolves every
-//! elastic contact point that closes within the step faster than
+//! elastic contact point in contact and approaching faster than
 //! `restitution_threshold` as a collision of its own, −e·vn, in sweeps until
 //! none is left (at most eight), so that a blow travels along a chain of
 //! touching bodies one collision at a time, as in Newton's cradle (the soft
@@ -61,8 +61,9 @@
 //! far ball leaves at 1.00 and every other ball keeps under 0.02. The 10 m
 //! drop's rebound ratios (`tests/quality.rs`, e² ± 0.03) moved from 0.246 to
 //! 0.243 (e = 0.5) and from 1.002 to 0.994 (e = 1; Box2D v3: 0.244 and
-//! 0.996): a point bounces where it stands at the start of the step, at most
-//! the speculative distance (2 cm) short of the surface.
+//! 0.996). Only points already in contact take part: a speculative point
+//! (still apart) is left to the sub-steps and the restitution pass, so that
+//! the pair touches and reports its hit before it bounces.
 //!
 //! The separation of each contact point is re-evaluated in every sub-step from
 //! how far the bodies moved and turned since the step began (linearised in the

@@ -26,13 +26,13 @@ pub const GOLDEN_CORE_SCENE: u64 = 0xcf9d_fe17_bb39_8801;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_PYRAMID: u64 = 0xf9e0_85eb_1d4b_51ae;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_MIXED: u64 = 0xd6cb_b270_bb8f_4e0a;
+pub const GOLDEN_MIXED: u64 = 0xd68e_a0fe_fcc5_dfb1;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_LONG: u64 = 0xa937_0cb0_9220_a930;
+pub const GOLDEN_LONG: u64 = 0x62b5_5bdd_f1fe_4eea;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_SHAPES: u64 = 0xfa1a_5b03_5a82_ad3a;
+pub const GOLDEN_SHAPES: u64 = 0xeda7_7308_4ee1_c660;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_COMPOUND: u64 = 0x5e4f_70f9_0d16_7d61;
+pub const GOLDEN_COMPOUND: u64 = 0x09be_7052_64c4_89ef;
 
 /// Steps of the core scene.
 pub const CORE_STEPS: u32 = 600;

@@ -623,8 +623,8 @@ pub(crate) fn restitute<const W: usize>(
 }
 
 /// The impacts of a step, before its sub-steps: every elastic point (e > 0)
-/// approaching faster than the restitution threshold whose gap closes within
-/// the step is resolved as a collision of its own, its normal speed turned
+/// in contact (s ≤ 0) approaching faster than the restitution threshold is
+/// resolved as a collision of its own, its normal speed turned
 /// from vn into −e·vn by an impulse on its two bodies alone. Returns whether
 /// any lane had one.
 ///
@@ -669,12 +669,16 @@ pub(crate) fn impact<const W: usize>(
     let mut target = [zero; 2];
     each_point!(K => {
         let vn = speed(&a, &b, n, v.pt(K, f::RAN), v.pt(K, f::RBN));
-        // The speed that closes the gap within the step: s/dt (Q13.19 ×
-        // Q22.10 → Q16.16), ≤ 4,096 m/s with s capped; a point already in
-        // contact (s ≤ 0) needs only to approach.
+        // Only points already in contact: a speculative one (s > 0) is
+        // left to the sub-steps and the restitution pass, so that its bodies
+        // touch and the contact begins (and reports its hit) before it
+        // bounces; bounced from its gap it would never touch (measured:
+        // `examples/car_wall.rs` at 60 m/s bounced without a hit event). The
+        // gap test s/dt (Q13.19 × Q22.10 → Q16.16, s capped) is kept for
+        // such points should a later change admit them.
         let gap = v.pt(K, f::BASE).max(zero).min(L::splat(params.step_cap)).mul::<13>(L::splat(params.inv_dt));
         let fast = vn.lt(L::splat(-params.threshold).add(L::splat(1)));
-        let closes = vn.add(gap).gt(zero).not();
+        let closes = v.pt(K, f::BASE).gt(zero).not().and(vn.add(gap).gt(zero).not());
         hit[K] = fast.and(closes).and(live[K]).and(elastic);
         target[K] = e.mul::<FU>(vn).neg();
     });
@@ -1001,7 +1005,8 @@ mod tests {
             assert_eq!(bodies8, bodies1, "round {round}: kernel {kernel} bodies");
         }
         // The impact kernel's rounds mostly have impacts (random approach
-        // speeds, half the gaps closed): the comparison is not of no-ops.
-        assert!(impacts > 1_500, "{impacts} of 2,000 impact rounds had an impact");
+        // speeds, half the points in contact; 1,423 measured): the comparison
+        // is not of no-ops.
+        assert!(impacts > 1_200, "{impacts} of 2,000 impact rounds had an impact");
     }
 }
