@@ -56,10 +56,6 @@ pub(crate) struct LaneParams {
     push: i32,
     /// The restitution threshold (Q16.16).
     threshold: i32,
-    /// 1/dt (Q22.10).
-    inv_dt: i32,
-    /// [`SPEC_BIAS_MAX`]·dt (Q13.19): gaps beyond it close within no step.
-    step_cap: i32,
     /// Contact and static softness.
     soft: [LaneSoft; 2],
 }
@@ -86,8 +82,6 @@ impl LaneParams {
             spec_cap: lanes::from_scalar(ctx.h * Scalar::from_int(SPEC_BIAS_MAX as i32), FS, 4095),
             push: lanes::velocity(push),
             threshold: lanes::velocity(ctx.restitution_threshold),
-            inv_dt: lanes::from_scalar(Scalar::ONE.div_or_zero(ctx.dt), FQ, 1 << 21),
-            step_cap: lanes::from_scalar(ctx.dt * Scalar::from_int(SPEC_BIAS_MAX as i32), FS, 4095),
             soft: [soft(&ctx.contact_softness), soft(&ctx.static_softness)],
         }
     }
@@ -673,13 +667,10 @@ pub(crate) fn impact<const W: usize>(
         // left to the sub-steps and the restitution pass, so that its bodies
         // touch and the contact begins (and reports its hit) before it
         // bounces; bounced from its gap it would never touch (measured:
-        // `examples/car_wall.rs` at 60 m/s bounced without a hit event). The
-        // gap test s/dt (Q13.19 × Q22.10 → Q16.16, s capped) is kept for
-        // such points should a later change admit them.
-        let gap = v.pt(K, f::BASE).max(zero).min(L::splat(params.step_cap)).mul::<13>(L::splat(params.inv_dt));
+        // `examples/car_wall.rs` at 60 m/s bounced without a hit event).
         let fast = vn.lt(L::splat(-params.threshold).add(L::splat(1)));
-        let closes = v.pt(K, f::BASE).gt(zero).not().and(vn.add(gap).gt(zero).not());
-        hit[K] = fast.and(closes).and(live[K]).and(elastic);
+        let touching = v.pt(K, f::BASE).gt(zero).not();
+        hit[K] = fast.and(touching).and(live[K]).and(elastic);
         target[K] = e.mul::<FU>(vn).neg();
     });
     let any = hit[0].or(hit[1]);
@@ -947,8 +938,6 @@ mod tests {
             spec_cap: rng.range(0, 4095 << 19),
             push: rng.range(0, 100 << 16),
             threshold: rng.range(0, 10 << 16),
-            inv_dt: rng.range(4 << 10, 1 << 26),
-            step_cap: rng.range(0, 4095 << 19),
             soft: [soft(rng), soft(rng)],
         };
         for s in p.soft.iter_mut() {
