@@ -133,8 +133,9 @@ pub(crate) fn run(
     arbiters: &ArbiterStore<'_>,
 ) -> Outcome {
     let mut out = Outcome::default();
-    // Which bodies are fast.
-    let mut any = false;
+    // Which bodies are fast, and whether a non-bullet, a bullet is: a pass
+    // without a fast body of its kind sweeps nothing and is skipped.
+    let mut fast = [false; 2];
     for (h, b) in bodies.iter() {
         let Some(sb) = solver.get_mut(h.index() as usize) else { continue };
         sb.ccd = 0;
@@ -146,10 +147,12 @@ pub(crate) fn run(
         let motion = d.x.abs() + d.y.abs() + sb.angle.abs() * b.radius;
         if motion > core_extent(b, paths) * SAFETY {
             sb.ccd = FAST;
-            any = true;
+            if let Some(f) = fast.get_mut(usize::from(b.bullet)) {
+                *f = true;
+            }
         }
     }
-    if !any {
+    if fast == [false; 2] {
         return out;
     }
     // A fast body whose box now is outside its broad-phase box was not
@@ -164,10 +167,19 @@ pub(crate) fn run(
     }
     let held = bp.joint_pairs.get(..bp.held).unwrap_or(&[]);
     for bullets in [false, true] {
+        if fast.get(usize::from(bullets)) != Some(&true) {
+            continue;
+        }
         let pass = Pass { bodies: &*bodies, paths, arbiters, held, bullets };
-        // Candidate pairs, each way round.
+        // Candidate pairs, each way round. Most candidates have no fast
+        // body: tested here, before the call (`pair` tests it again), the
+        // non-bullet pass costs fewer calls (mixed 180 steps: 935.6 -> 908.8 M
+        // instructions).
         for &(x, y) in bp.candidates(candidates) {
             for (f, o) in [(x, y), (y, x)] {
+                if solver.get(f as usize).is_none_or(|s| s.ccd & FAST == 0) {
+                    continue;
+                }
                 if let Some(t) = pass.pair(solver, f, o, false, &mut out.sweeps) {
                     if let Some(sb) = solver.get_mut(f as usize) {
                         sb.toi = sb.toi.min(t);
