@@ -6,6 +6,7 @@
 //! [`Manifold::from_local`] once to express them in world orientation.
 
 use super::Direction;
+pub(crate) use crate::math::scalar::{below_one, mul_below_one};
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Transform, Vector2};
 
@@ -127,28 +128,6 @@ pub(crate) struct LocalPoint {
 #[inline]
 pub(crate) fn half(x: Scalar) -> Scalar {
     Scalar::from_bits(x.to_bits() >> 1)
-}
-
-/// Whether `|a| < 1`: then [`mul_below_one`] by `a` is the saturating
-/// product's value, whatever the other factor.
-#[inline(always)]
-pub(crate) fn below_one(a: Scalar) -> bool {
-    a.to_bits().unsigned_abs() < 1 << 32
-}
-
-/// `a * b` for `|a| < 1` (see [`below_one`]): the same bits as the
-/// saturating product, without its test for saturation.
-///
-/// That product is bits 32..96 of the exact 128-bit product, saturated when
-/// they do not fit an `i64`. With `|a| < 2³²` and `|b| ≤ 2⁶³` in bits,
-/// `|a·b| < 2⁹⁵`, so `⌊a·b / 2³²⌋` lies in `[−2⁶³, 2⁶³)`: it always fits, and
-/// the shift alone gives it. Face normals off the axes and the rotations of
-/// turned bodies have both components below 1; their products are most of
-/// those in the polygon narrow phase.
-#[inline(always)]
-pub(crate) fn mul_below_one(a: Scalar, b: Scalar) -> Scalar {
-    let full = i128::from(a.to_bits()).wrapping_mul(i128::from(b.to_bits()));
-    Scalar::from_bits((full >> 32) as i64)
 }
 
 /// `n · d` for `n` with both components below 1 (see [`below_one`]): the same

@@ -7,7 +7,7 @@
 //! renormalisation (one `sqrt`). Angles exist only at the API edge, through the
 //! deterministic fixed-point functions in [`crate::math::trig`].
 
-use super::scalar::{Scalar, ONE, ZERO};
+use super::scalar::{below_one, mul_below_one, Scalar, ONE, ZERO};
 use super::trig;
 use super::vector2::Vector2;
 
@@ -94,18 +94,32 @@ impl Rot {
     /// 1/√m ≈ 1 − e/2 + 3e²/8 with e = m − 1 (error under 5e-10, about two
     /// units of the last place), which costs four products instead of a square
     /// root and two divisions; faster turns are normalised exactly.
+    #[inline]
     #[must_use]
     pub fn integrate(self, delta: Scalar) -> Self {
         /// 2^-10: the largest |m − 1| rescaled by the series.
         const SERIES_LIMIT: Scalar = Scalar::from_bits(1 << 22);
         const THREE_EIGHTHS: Scalar = Scalar::lit("0.375");
-        let c = self.c - self.s * delta;
-        let s = self.s + self.c * delta;
-        let e = c * c + s * s - Scalar::ONE;
+        // A factor below 1 in magnitude (the turn, a turned rotation's parts,
+        // `e` in the series' range, 3/8) skips the saturation test of its
+        // products ([`mul_below_one`], the same bits; a product's factors
+        // commute), and the function is inlined into the solver's loop
+        // (mixed 180 steps: 36.5 M instructions out of line before; 908.8 ->
+        // 902.5 M in all).
+        let mul = |a: Scalar, b: Scalar| if below_one(a) { mul_below_one(a, b) } else { a * b };
+        let c = self.c - mul(delta, self.s);
+        let s = self.s + mul(delta, self.c);
+        let turned = below_one(c) && below_one(s);
+        let (cc, ss) = if turned { (mul_below_one(c, c), mul_below_one(s, s)) } else { (c * c, s * s) };
+        let e = cc + ss - Scalar::ONE;
         if e <= SERIES_LIMIT && e >= -SERIES_LIMIT {
             let half_e = Scalar::from_bits(e.to_bits() >> 1);
-            let k = Scalar::ONE - half_e + THREE_EIGHTHS * (e * e);
-            Self { c: c * k, s: s * k }
+            let k = Scalar::ONE - half_e + mul_below_one(THREE_EIGHTHS, mul_below_one(e, e));
+            if turned {
+                Self { c: mul_below_one(c, k), s: mul_below_one(s, k) }
+            } else {
+                Self { c: c * k, s: s * k }
+            }
         } else {
             Self { c, s }.normalized()
         }
