@@ -13,7 +13,7 @@ use crate::arena::{Arena, Handle};
 use crate::compound::{is_compound, shapes_of, ShapeSlot, NO_SHAPE};
 use crate::geometry::chain::ChainSlab;
 use crate::geometry::{Capsule, ChainHandle, MassData, PolygonPath, Segment};
-use crate::math::scalar::{Scalar, ZERO};
+use crate::math::scalar::{below_one, mul_below_one, Scalar, ZERO};
 use crate::math::{Rect, Rot, Transform, Vector2};
 
 pub use crate::body_def::{BodyDef, CollisionFilter, MassSpec};
@@ -560,8 +560,17 @@ pub(crate) fn shape_aabb(
         Shape::Circle { radius } => Rect::from_center(xf.p, Vector2::new(radius, radius)),
         Shape::Polygon(h) => match paths.get(h) {
             Some(p) => {
+                // A sharp polygon's box is already in order, so growing it by
+                // 0 would change nothing: the out-of-line `expand` is skipped
+                // (with the products below, the boxes' functions on mixed
+                // 180 steps 26.6 -> 22.6 M instructions).
                 let r = p.rounding();
-                polygon_aabb(p.vertices(), xf).expand(r)
+                let aabb = polygon_aabb(p.vertices(), xf);
+                if r == ZERO {
+                    aabb
+                } else {
+                    aabb.expand(r)
+                }
             }
             None => Rect::from_center(xf.p, Vector2::new(fallback_radius, fallback_radius)),
         },
@@ -588,12 +597,26 @@ pub(crate) fn shape_aabb(
 /// non-decreasing in both. Any other polygon reuses the products of a
 /// coordinate equal to the previous vertex's (a regular hexagon's sides share
 /// x, a triangle's base y).
+///
+/// A turned body's rotation has both parts below 1 in magnitude: its products
+/// skip the saturation test ([`mul_below_one`], the same bits).
 pub(crate) fn polygon_aabb(vertices: &[Vector2], xf: Transform) -> Rect {
+    if below_one(xf.q.c) && below_one(xf.q.s) {
+        polygon_aabb_by(vertices, xf, mul_below_one)
+    } else {
+        polygon_aabb_by(vertices, xf, |k, x| k * x)
+    }
+}
+
+/// [`polygon_aabb`] with `mul(k, x)` for each product `k * x` of a part `k` of
+/// the rotation and a coordinate `x`.
+#[inline(always)]
+fn polygon_aabb_by(vertices: &[Vector2], xf: Transform, mul: impl Fn(Scalar, Scalar) -> Scalar) -> Rect {
     let (c, s) = (xf.q.c, xf.q.s);
     let (lo, hi) = match vertices {
         [v0, v1, v2, v3] if is_grid_rectangle(*v0, *v1, *v2, *v3) => {
-            let (cx0, cx1, sx0, sx1) = (c * v0.x, c * v2.x, s * v0.x, s * v2.x);
-            let (sy0, sy1, cy0, cy1) = (s * v0.y, s * v2.y, c * v0.y, c * v2.y);
+            let (cx0, cx1, sx0, sx1) = (mul(c, v0.x), mul(c, v2.x), mul(s, v0.x), mul(s, v2.x));
+            let (sy0, sy1, cy0, cy1) = (mul(s, v0.y), mul(s, v2.y), mul(c, v0.y), mul(c, v2.y));
             let lo = Vector2::new(cx0.min(cx1) - sy0.max(sy1), sx0.min(sx1) + cy0.min(cy1));
             let hi = Vector2::new(cx0.max(cx1) - sy0.min(sy1), sx0.max(sx1) + cy0.max(cy1));
             (lo, hi)
@@ -602,14 +625,14 @@ pub(crate) fn polygon_aabb(vertices: &[Vector2], xf: Transform) -> Rect {
             // Each vertex rotated as `Rot::rotate` does, `(c·x − s·y, s·x + c·y)`,
             // reusing the products of a coordinate equal to the previous
             // vertex's (the same operands give the same bits).
-            let k = [c * first.x, s * first.x, s * first.y, c * first.y];
+            let k = [mul(c, first.x), mul(s, first.x), mul(s, first.y), mul(c, first.y)];
             let w = Vector2::new(k[0] - k[2], k[1] + k[3]);
             let (mut lo, mut hi) = (w, w);
             let mut prev = (*first, k);
             for v in rest {
                 let (u, k) = prev;
-                let [cx, sx] = if u.x == v.x { [k[0], k[1]] } else { [c * v.x, s * v.x] };
-                let [sy, cy] = if u.y == v.y { [k[2], k[3]] } else { [s * v.y, c * v.y] };
+                let [cx, sx] = if u.x == v.x { [k[0], k[1]] } else { [mul(c, v.x), mul(s, v.x)] };
+                let [sy, cy] = if u.y == v.y { [k[2], k[3]] } else { [mul(s, v.y), mul(c, v.y)] };
                 let w = Vector2::new(cx - sy, sx + cy);
                 (lo, hi) = (lo.min(w), hi.max(w));
                 prev = (*v, [cx, sx, sy, cy]);
