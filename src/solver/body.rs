@@ -25,12 +25,15 @@ pub(crate) const DR: usize = 3;
 pub(crate) const DPX: usize = 4;
 /// … y.
 pub(crate) const DPY: usize = 5;
+/// Non-zero when a contact's deep push-out moved the body (changed its
+/// motion lanes) since the last integration.
+pub(crate) const MOVED: usize = 6;
 
 /// The smallest body radius the solver uses for rim speeds (m): keeps
 /// 1/r_b within its format for the tiniest shapes.
 const MIN_RADIUS: Scalar = Scalar::from_bits(1 << 24);
 
-/// A body's lane state: `[v_x, v_y, ŵ, δ̂, dp_x, dp_y, 0, 0]`, Q16.16
+/// A body's lane state: `[v_x, v_y, ŵ, δ̂, dp_x, dp_y, moved, 0]`, Q16.16
 /// velocities and Q12.20 changes since the step began (solver scratch, one
 /// per body slot; see [`Storage`](crate::Storage)). Kept in an array of its
 /// own, 32 bytes a body, so that the contact kernels' gathers stay in cache.
@@ -247,6 +250,9 @@ impl SolverBody {
     #[inline]
     pub(crate) fn integrate(&mut self, h: Scalar, vmax: Scalar, lane: &mut BodyLanes) {
         self.pull(lane);
+        if lane.0[MOVED] != 0 {
+            self.pull_pose(lane);
+        }
         let v = Vector2::new(self.v.x.clamp(-vmax, vmax), self.v.y.clamp(-vmax, vmax));
         let w = self.w.clamp(-self.w_max, self.w_max);
         // A body nothing moved since its last push, within its limits, has
@@ -266,6 +272,25 @@ impl SolverBody {
         lane.0[DPX] = lanes::from_scalar(dp.x, FP, 2047);
         lane.0[DPY] = lanes::from_scalar(dp.y, FP, 2047);
         lane.0[DR] = lanes::from_scalar(self.angle * self.radius, FP, 2047);
+    }
+
+    /// Carries a deep push-out's move of the motion lanes (see
+    /// `contact::kernel`'s `push_apart`) into the `Scalar` pose: the
+    /// difference between the lanes and what the pose would load them with.
+    #[inline(never)]
+    fn pull_pose(&mut self, lane: &mut BodyLanes) {
+        let lane = &mut lane.0;
+        lane[MOVED] = 0;
+        let dp = self.p - self.p0;
+        let dx = lane[DPX].wrapping_sub(lanes::from_scalar(dp.x, FP, 2047));
+        let dy = lane[DPY].wrapping_sub(lanes::from_scalar(dp.y, FP, 2047));
+        let dr = lane[DR].wrapping_sub(lanes::from_scalar(self.angle * self.radius, FP, 2047));
+        self.p += Vector2::new(lanes::to_scalar(dx, FP), lanes::to_scalar(dy, FP));
+        if dr != 0 {
+            let turn = lanes::to_scalar(dr, FP) * self.inv_radius;
+            self.angle += turn;
+            self.q = self.q.integrate(turn);
+        }
     }
 
     /// Velocity of the point at offset `r` from the centre of mass (from the
