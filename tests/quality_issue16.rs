@@ -237,6 +237,65 @@ fn quality_hundred_circles_at_one_point_under_gravity() {
     check(&heap_at_one_point(true));
 }
 
+// ---- 2b. deep overlaps, one at a time ------------------------------------------
+
+/// Two equal circles of radius 0.5 created with their centres 0.2 m apart (0.8 m
+/// of overlap), no gravity: they separate within 0.75 s (0.5 s measured: 0.7 m
+/// moved out at the push speed, then the spring's last 10 cm), never faster
+/// relative to each other than the push speed, and the move out of the deep
+/// overlap keeps their centre of mass where it was (the two bodies share each
+/// move by their mass ratios).
+#[test]
+fn two_deeply_overlapping_circles_separate_slowly_about_their_centre_of_mass() {
+    let mut w = world_with_contacts(2, 4, false);
+    let push = w.def().contact_push_speed.to_f64();
+    let a = add(&mut w, BodyDef::circle(s(0.5)), 0.0, 0.0);
+    let b = add(&mut w, BodyDef::circle(s(0.5)), 0.2, 0.0);
+    let mut separated_at = None;
+    let mut fastest: f64 = 0.0;
+    for i in 1..=steps(1.0) {
+        step(&mut w);
+        let (va, vb) = (vel(&w, a), vel(&w, b));
+        fastest = fastest.max((vb.0 - va.0).hypot(vb.1 - va.1));
+        let (pa, pb) = (pos(&w, a), pos(&w, b));
+        let mid = ((pa.0 + pb.0) / 2.0, (pa.1 + pb.1) / 2.0);
+        assert!((mid.0 - 0.1).abs() < 1e-5 && mid.1.abs() < 1e-5, "step {i}: centre of mass {mid:?}");
+        if separated_at.is_none() && (pb.0 - pa.0).hypot(pb.1 - pa.1) >= 1.0 - RESTING_OVERLAP {
+            separated_at = Some(i as f64 * DT);
+        }
+    }
+    println!(
+        "two circles 0.8 m deep: separated at {separated_at:?} s, fastest relative speed {fastest:.3} m/s"
+    );
+    assert!(separated_at.is_some_and(|t| t <= 0.75), "separated at {separated_at:?}");
+    assert!(fastest <= push, "relative speed {fastest} m/s above the push speed {push}");
+}
+
+/// A 1 m box created 0.6 m deep in a static ground, gravity on: moved out by at
+/// most 0.2 m per sub-step, it is out to the spring's range within two steps,
+/// rests on the surface at 1 s, and never moves faster than the push speed.
+#[test]
+fn a_box_created_deep_in_the_ground_is_moved_out_without_being_thrown() {
+    let mut w = world_with_contacts(2, 4, true);
+    let push = w.def().contact_push_speed.to_f64();
+    ground(&mut w, 20.0);
+    let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("path");
+    let b = add(&mut w, BodyDef::polygon(unit), 0.0, 0.5 - 0.6);
+    let mut fastest: f64 = 0.0;
+    for i in 1..=steps(1.0) {
+        step(&mut w);
+        fastest = fastest.max(speed(&w, b));
+        if i == 2 {
+            let depth = 0.5 - pos(&w, b).1;
+            assert!(depth <= 0.1, "still {depth} m deep after two steps");
+        }
+    }
+    let depth = 0.5 - pos(&w, b).1;
+    println!("box 0.6 m deep: {depth:.4} m deep at 1 s, fastest {fastest:.3} m/s");
+    assert!(depth.abs() <= RESTING_OVERLAP, "{depth} m deep at 1 s");
+    assert!(fastest <= push, "{fastest} m/s above the push speed {push}");
+}
+
 // ---- 3. two-box stack mass ratio ------------------------------------------------
 
 /// How far the top box may sink in 10 s (m).
