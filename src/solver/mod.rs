@@ -20,7 +20,12 @@
 //!    from closing the gap within the sub-step), in one sweep, with both points
 //!    of a two-point manifold solved together as a 2×2 block (an exact linear
 //!    complementarity solve, as in Box2D v2.4, of the system whose Gauss-Seidel
-//!    step is Box2D v3's per-point soft update: each point its own spring),
+//!    step is Box2D v3's per-point soft update: each point its own spring);
+//!    a point overlapping deeper than 10 cm is not pushed out by the spring's
+//!    velocity but by moving its bodies apart in the same sweep (Box2D v2.4's
+//!    position solver for those points only), so that bodies created or
+//!    crushed deep inside each other separate without flying apart (see
+//!    `contact::kernel`'s `DEEP_OVERLAP`),
 //! 4. integrates positions,
 //! 5. relaxes: one sweep without the position bias, so the push-out does not
 //!    leave energy behind; the last sub-step adds one more forward sweep.

@@ -16,8 +16,10 @@
 //! in the turn (s = s₀ + n·Δ(dp) + δ̂_B·r̂_B − δ̂_A·r̂_A; the neglected term only
 //! makes s smaller, so the estimate errs towards contact); a point still apart
 //! is speculative (it may close its gap within the sub-step, no more), one in
-//! contact is a soft spring-damper pushing out at no more than the push speed,
-//! and every row is rigid and unbiased in the relax sweeps.
+//! contact is a soft spring-damper pushing out at no more than the push speed
+//! (one deeper than [`DEEP_OVERLAP`] keeps the spring without its bias and is
+//! pushed out by moving the bodies, [`push_apart`]), and every row is rigid
+//! and unbiased in the relax sweeps.
 
 use core::cell::Cell;
 
