@@ -1126,6 +1126,24 @@ fn collide_body_shapes<S: ShapeData>(
 /// from A to B), with points reported up to `margin` apart.
 #[inline]
 fn collide_bodies(a: &Body, b: &Body, paths: &ShapeStore<'_>, link: u32, margin: Scalar) -> Manifold {
+    // Two polygons (most pairs) straight to their pair function: the same
+    // call `collide_canonical` makes, without building both `ShapeRef`s on
+    // the stack and dispatching on them.
+    match (&a.shape, &b.shape) {
+        (Shape::Polygon(ha), Shape::Polygon(hb)) => {
+            return match (paths.get(*ha), paths.get(*hb)) {
+                (Some(pa), Some(pb)) => collide_polygons(pa, a.transform(), pb, b.transform(), margin),
+                _ => Manifold::EMPTY,
+            };
+        }
+        (Shape::Circle { radius }, Shape::Polygon(h)) => {
+            return match paths.get(*h) {
+                Some(p) => flip(collide_polygon_circle(p, b.transform(), *radius, a.transform(), margin)),
+                None => Manifold::EMPTY,
+            };
+        }
+        _ => {}
+    }
     match (ShapeRef::of(&a.shape, paths, link), ShapeRef::of(&b.shape, paths, link)) {
         (Some(sa), Some(sb)) => collide_canonical(sa, a.transform(), sb, b.transform(), margin),
         _ => Manifold::EMPTY,
