@@ -152,6 +152,11 @@ export CARGO_TARGET_S390X_UNKNOWN_LINUX_GNU_LINKER=s390x-linux-gnu-gcc
 export CARGO_TARGET_S390X_UNKNOWN_LINUX_GNU_RUNNER=qemu-s390x-static
 # (The WASI flag is needed by node 18, Debian's nodejs, and accepted by later nodes.)
 export CARGO_TARGET_WASM32_WASIP1_RUNNER="node --no-warnings --experimental-wasi-unstable-preview1 $ROOT/scripts/wasi-run.mjs"
+# The golden scenes keep their WorldBuffers on the stack (the banded pyramid's
+# are 0.8 MB), and wasm-ld gives a module 1 MB of stack by default, shared with
+# the test harness: the test binaries get 8 MB (a game with large buffers on
+# the stack needs the same link argument).
+export CARGO_TARGET_WASM32_WASIP1_RUSTFLAGS="-C link-arg=-zstack-size=8388608"
 
 # target  how  QEMU_LD_PREFIX (the target's libc, for qemu-user's dynamic loader)
 FOREIGN=(

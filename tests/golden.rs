@@ -10,7 +10,8 @@
 mod golden_scenes;
 
 use golden_scenes::{
-    Outcome, GOLDEN_COMPOUND, GOLDEN_CORE_SCENE, GOLDEN_LONG, GOLDEN_MIXED, GOLDEN_PYRAMID, GOLDEN_SHAPES,
+    Outcome, GOLDEN_BANDED, GOLDEN_COMPOUND, GOLDEN_CORE_SCENE, GOLDEN_LONG, GOLDEN_MIXED, GOLDEN_PYRAMID,
+    GOLDEN_SHAPES,
 };
 
 fn report(name: &str, steps: u32, out: &Outcome) {
@@ -31,6 +32,13 @@ fn pyramid_hash_is_the_committed_constant() {
     let out = golden_scenes::pyramid().expect("pyramid");
     report("pyramid", golden_scenes::PYRAMID_STEPS, &out);
     assert_eq!(out.hash, GOLDEN_PYRAMID);
+}
+
+#[test]
+fn banded_pyramid_hash_is_the_committed_constant() {
+    let out = golden_scenes::banded_pyramid().expect("banded pyramid");
+    report("banded-pyramid", golden_scenes::BANDED_STEPS, &out);
+    assert_eq!(out.hash, GOLDEN_BANDED);
 }
 
 #[test]

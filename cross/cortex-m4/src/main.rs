@@ -26,13 +26,14 @@ use golden_scenes::{Outcome, SceneError};
 
 type Scene = (&'static str, fn() -> Result<Outcome, SceneError>, u64);
 
-const SCENES: [Scene; 6] = [
+const SCENES: [Scene; 7] = [
     ("core scene", golden_scenes::core_scene, golden_scenes::GOLDEN_CORE_SCENE),
     ("pyramid", golden_scenes::pyramid, golden_scenes::GOLDEN_PYRAMID),
     ("mixed scene", golden_scenes::mixed, golden_scenes::GOLDEN_MIXED),
     ("long-running scene", golden_scenes::long_running, golden_scenes::GOLDEN_LONG),
     ("every-shape scene", golden_scenes::shapes, golden_scenes::GOLDEN_SHAPES),
     ("compound-body scene", golden_scenes::compound, golden_scenes::GOLDEN_COMPOUND),
+    ("banded-pyramid", golden_scenes::banded_pyramid, golden_scenes::GOLDEN_BANDED),
 ];
 
 #[entry]
