@@ -35,9 +35,9 @@ fn pyramid_hash_is_the_committed_constant() {
 }
 
 #[test]
-fn banded_pyramid_hash_is_the_committed_constant() {
-    let out = golden_scenes::banded_pyramid().expect("banded pyramid");
-    report("banded-pyramid", golden_scenes::BANDED_STEPS, &out);
+fn banded_tower_hash_is_the_committed_constant() {
+    let out = golden_scenes::banded_tower().expect("banded tower");
+    report("banded-tower", golden_scenes::BANDED_STEPS, &out);
     assert_eq!(out.hash, GOLDEN_BANDED);
 }
 

@@ -37,7 +37,7 @@ fn every_golden_scene_hashes_to_its_constant_at_every_level() {
         ("long-running", golden_scenes::long_running, GOLDEN_LONG),
         ("every-shape", golden_scenes::shapes, GOLDEN_SHAPES),
         ("compound-body", golden_scenes::compound, GOLDEN_COMPOUND),
-        ("banded-pyramid", golden_scenes::banded_pyramid, GOLDEN_BANDED),
+        ("banded-tower", golden_scenes::banded_tower, GOLDEN_BANDED),
     ];
     for level in levels() {
         limit_simd_level(level);

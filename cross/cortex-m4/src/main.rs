@@ -33,7 +33,7 @@ const SCENES: [Scene; 7] = [
     ("long-running scene", golden_scenes::long_running, golden_scenes::GOLDEN_LONG),
     ("every-shape scene", golden_scenes::shapes, golden_scenes::GOLDEN_SHAPES),
     ("compound-body scene", golden_scenes::compound, golden_scenes::GOLDEN_COMPOUND),
-    ("banded-pyramid", golden_scenes::banded_pyramid, golden_scenes::GOLDEN_BANDED),
+    ("banded-tower", golden_scenes::banded_tower, golden_scenes::GOLDEN_BANDED),
 ];
 
 #[entry]
