@@ -268,10 +268,19 @@ impl SolverBody {
         let turn = self.w * h;
         self.angle += turn;
         self.q = self.q.integrate(turn);
+        [lane.0[DPX], lane.0[DPY], lane.0[DR]] = self.motion_lanes();
+    }
+
+    /// The motion since the step began as the lanes hold it: dp_x, dp_y and
+    /// δ̂ = dθ·r_b, rounded and saturated.
+    #[inline]
+    fn motion_lanes(&self) -> [i32; 3] {
         let dp = self.p - self.p0;
-        lane.0[DPX] = lanes::from_scalar(dp.x, FP, 2047);
-        lane.0[DPY] = lanes::from_scalar(dp.y, FP, 2047);
-        lane.0[DR] = lanes::from_scalar(self.angle * self.radius, FP, 2047);
+        [
+            lanes::from_scalar(dp.x, FP, 2047),
+            lanes::from_scalar(dp.y, FP, 2047),
+            lanes::from_scalar(self.angle * self.radius, FP, 2047),
+        ]
     }
 
     /// Carries a deep push-out's move of the motion lanes (see
@@ -279,12 +288,10 @@ impl SolverBody {
     /// difference between the lanes and what the pose would load them with.
     #[inline(never)]
     fn pull_pose(&mut self, lane: &mut BodyLanes) {
+        let [x, y, r] = self.motion_lanes();
         let lane = &mut lane.0;
         lane[MOVED] = 0;
-        let dp = self.p - self.p0;
-        let dx = lane[DPX].wrapping_sub(lanes::from_scalar(dp.x, FP, 2047));
-        let dy = lane[DPY].wrapping_sub(lanes::from_scalar(dp.y, FP, 2047));
-        let dr = lane[DR].wrapping_sub(lanes::from_scalar(self.angle * self.radius, FP, 2047));
+        let (dx, dy, dr) = (lane[DPX].wrapping_sub(x), lane[DPY].wrapping_sub(y), lane[DR].wrapping_sub(r));
         self.p += Vector2::new(lanes::to_scalar(dx, FP), lanes::to_scalar(dy, FP));
         if dr != 0 {
             let turn = lanes::to_scalar(dr, FP) * self.inv_radius;
