@@ -8,7 +8,7 @@
 use super::Direction;
 pub(crate) use crate::math::scalar::{below_one, mul_below_one};
 use crate::math::scalar::{Scalar, ZERO};
-use crate::math::{Transform, Vector2};
+use crate::math::{Rot, Transform, Vector2};
 
 /// Most contact points a manifold holds: two points are enough to hold a convex
 /// shape flat against a face in 2D.
@@ -93,11 +93,35 @@ impl Manifold {
         local: &[LocalPoint],
         frame_is_b: bool,
     ) -> Self {
+        // A turned body's rotation has both components below 1: its products
+        // skip the saturation test (`mul_below_one`), the same bits.
+        if below_one(frame.q.c) && below_one(frame.q.s) {
+            Self::from_local_by(frame, other_position, normal, local, frame_is_b, mul_below_one)
+        } else {
+            Self::from_local_by(frame, other_position, normal, local, frame_is_b, |k, x| k * x)
+        }
+    }
+
+    /// [`Manifold::from_local`] with the product `mul` (by a component of
+    /// `frame.q` first).
+    #[inline(always)]
+    fn from_local_by(
+        frame: Transform,
+        other_position: Vector2,
+        normal: Vector2,
+        local: &[LocalPoint],
+        frame_is_b: bool,
+        mul: impl Fn(Scalar, Scalar) -> Scalar,
+    ) -> Self {
         let mut m = Self::EMPTY;
-        let n = Direction::of(normal).rotated(frame.q);
+        let q = frame.q;
+        let n = match Direction::of(normal) {
+            Direction::Any(n) => rotate_by(q, n, &mul),
+            d => d.rotated(q),
+        };
         m.normal = if frame_is_b { -n } else { n };
         for (slot, lp) in m.points.iter_mut().zip(local) {
-            let anchor_frame = frame.q.rotate(lp.point);
+            let anchor_frame = rotate_by(q, lp.point, &mul);
             let point = frame.p + anchor_frame;
             let anchor_other = point - other_position;
             let (anchor_a, anchor_b) =
@@ -107,6 +131,44 @@ impl Manifold {
         m.count = local.len().min(MAX_MANIFOLD_POINTS);
         m
     }
+}
+
+/// `q.rotate(v)`, `(c·x − s·y, s·x + c·y)`, with the product `mul` (the
+/// saturating one, or [`mul_below_one`] when both of `q`'s components are
+/// below 1): the same bits.
+#[inline(always)]
+pub(crate) fn rotate_by(q: Rot, v: Vector2, mul: impl Fn(Scalar, Scalar) -> Scalar) -> Vector2 {
+    Vector2::new(mul(q.c, v.x) - mul(q.s, v.y), mul(q.s, v.x) + mul(q.c, v.y))
+}
+
+/// `xf.inv_mul(other)`: `other` in `xf`'s frame, `(q⁻¹·(p' − p), q⁻¹∘q')`, the
+/// same bits. Every product has a component of `xf.q` (or its negated sine)
+/// as a factor, so when both are below 1 (a turned body) the products skip
+/// the saturation test ([`mul_below_one`]).
+#[inline(always)]
+pub(crate) fn relative_transform(xf: Transform, other: Transform) -> Transform {
+    if below_one(xf.q.c) && below_one(xf.q.s) {
+        relative_transform_by(xf, other, mul_below_one)
+    } else {
+        xf.inv_mul(other)
+    }
+}
+
+/// [`relative_transform`] with the product `mul`, written out as
+/// [`Transform::inv_mul`] computes it: `inv_rotate` of the offset, then the
+/// inverse rotation `(c, −s)` composed with `other.q`.
+#[inline(always)]
+fn relative_transform_by(
+    xf: Transform,
+    other: Transform,
+    mul: impl Fn(Scalar, Scalar) -> Scalar,
+) -> Transform {
+    let (c, s) = (xf.q.c, xf.q.s);
+    let d = other.p - xf.p;
+    let p = Vector2::new(mul(c, d.x) + mul(s, d.y), mul(c, d.y) - mul(s, d.x));
+    let (ns, o) = (-s, other.q);
+    let q = Rot { c: mul(c, o.c) - mul(ns, o.s), s: mul(ns, o.c) + mul(c, o.s) };
+    Transform { p, q }
 }
 
 /// A contact point in the local frame of the body a pair function works in.
@@ -158,7 +220,6 @@ mod tests {
     use super::*;
     use crate::math::scalar::HALF;
     use crate::math::scalar::{self, from_int, ONE};
-    use crate::math::Rot;
 
     fn unit_error(n: Vector2) -> Scalar {
         (n.length_squared() - ONE).abs()
@@ -192,6 +253,37 @@ mod tests {
             assert_eq!(dot_below_one(n, d), n.dot(d));
         }
         assert!(!below_one(ONE) && !below_one(-ONE) && !below_one(Scalar::MIN));
+    }
+
+    #[test]
+    fn relative_transform_and_rotate_by_are_the_plain_operations() {
+        let mut x = 0x51F1_5EED_0DDB_A11Eu64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x as i64
+        };
+        for k in 0..20_000 {
+            // Turned rotations, the identity and quarter turns (components ±1).
+            let mut rot = |k: usize| match k % 5 {
+                0 => Rot::IDENTITY,
+                1 => Rot { c: ZERO, s: -ONE },
+                _ => Rot::from_angle(Scalar::from_bits(next() >> 29)),
+            };
+            let (qa, qb) = (rot(k), rot(k / 5));
+            let shift = 20 + (k % 40) as u32;
+            let mut point =
+                || Vector2::new(Scalar::from_bits(next() >> shift), Scalar::from_bits(next() >> shift));
+            let (xa, xb) = (Transform::new(point(), qa), Transform::new(point(), qb));
+            assert_eq!(relative_transform(xa, xb), xa.inv_mul(xb), "{xa:?} {xb:?}");
+            let v = point();
+            let mul = |k: Scalar, x: Scalar| k * x;
+            assert_eq!(rotate_by(qa, v, mul), qa.rotate(v));
+            if below_one(qa.c) && below_one(qa.s) {
+                assert_eq!(rotate_by(qa, v, mul_below_one), qa.rotate(v), "{qa:?} {v:?}");
+            }
+        }
     }
 
     #[test]

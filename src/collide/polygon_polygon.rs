@@ -25,8 +25,8 @@
 //! numbers stay of the size of the bodies, whatever their world position.
 
 use super::manifold::{
-    below_one, direction_and_length, dot_below_one, half, mul_below_one, LocalPoint, Manifold,
-    MAX_MANIFOLD_POINTS,
+    below_one, direction_and_length, dot_below_one, half, mul_below_one, relative_transform, LocalPoint,
+    Manifold, MAX_MANIFOLD_POINTS,
 };
 use super::{next_index, Direction};
 use crate::geometry::{PolygonPath, MAX_POLYGON_VERTICES};
@@ -112,7 +112,7 @@ pub fn collide_polygons(
     // (Sharp pairs, the common case, skip the saturating additions.)
     let radius = poly_a.rounding + poly_b.rounding;
     let reach = if radius == Scalar::ZERO { margin } else { margin + radius };
-    let b_in_a = xf_a.inv_mul(xf_b);
+    let b_in_a = relative_transform(xf_a, xf_b);
     let mut buf_b = [Vector2::ZERO; MAX_POLYGON_VERTICES];
     let verts_b_in_a = transform_vertices(poly_b, b_in_a, &mut buf_b);
     let Some((edge_a, sep_a)) = max_separation(poly_a, verts_b_in_a, b_in_a.p) else {
@@ -121,7 +121,7 @@ pub fn collide_polygons(
     if sep_a > reach {
         return Manifold::EMPTY;
     }
-    let a_in_b = xf_b.inv_mul(xf_a);
+    let a_in_b = relative_transform(xf_b, xf_a);
     let mut buf_a = [Vector2::ZERO; MAX_POLYGON_VERTICES];
     let verts_a_in_b = transform_vertices(poly_a, a_in_b, &mut buf_a);
     let Some((edge_b, sep_b)) = max_separation(poly_b, verts_a_in_b, a_in_b.p) else {
