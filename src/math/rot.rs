@@ -26,6 +26,9 @@ impl Default for Rot {
     }
 }
 
+/// 2^-10 in bits: the largest |m − 1| [`Rot::integrate`] rescales by the series.
+const SERIES_LIMIT: u64 = 1 << 22;
+
 impl Rot {
     /// No rotation.
     pub const IDENTITY: Self = Self { c: ONE, s: ZERO };
@@ -94,25 +97,54 @@ impl Rot {
     /// 1/√m ≈ 1 − e/2 + 3e²/8 with e = m − 1 (error under 5e-10, about two
     /// units of the last place), which costs four products instead of a square
     /// root and two divisions; faster turns are normalised exactly.
-    #[inline]
+    ///
+    /// Every operation is `Scalar`'s saturating one; when |δ| < 1 and both
+    /// parts are below 2 in magnitude (any unit rotation) none of them can
+    /// saturate, and the products are plain 128-bit products shifted (the
+    /// bits the saturating ones give when they fit), without the tests. That
+    /// path is inlined into the solver's loop; the rest is
+    /// [`integrate_saturating`](Self::integrate_saturating), out of line.
+    /// Mixed scene, 180 steps: 901.2 → 889.6 M instructions; large 20:
+    /// 2,400.5 → 2,386.5 M.
+    #[inline(always)]
     #[must_use]
     pub fn integrate(self, delta: Scalar) -> Self {
-        /// 2^-10: the largest |m − 1| rescaled by the series.
-        const SERIES_LIMIT: Scalar = Scalar::from_bits(1 << 22);
+        let (c0, s0, d) = (self.c.to_bits(), self.s.to_bits(), delta.to_bits());
+        if d.unsigned_abs() >> 32 != 0 || (c0.unsigned_abs() | s0.unsigned_abs()) >> 33 != 0 {
+            return self.integrate_saturating(delta);
+        }
+        // ⌊a·b⌋ in Q32.32: the saturating product's bits when it fits.
+        let mul = |a: i64, b: i64| ((i128::from(a) * i128::from(b)) >> 32) as i64;
+        // |δ·s|, |δ·c| < 2, so |c|, |s| < 4 and c² + s² < 32: nothing overflows.
+        let c = c0 - mul(d, s0);
+        let s = s0 + mul(d, c0);
+        let e = mul(c, c) + mul(s, s) - (1 << 32);
+        if e.unsigned_abs() > SERIES_LIMIT {
+            return Self { c: Scalar::from_bits(c), s: Scalar::from_bits(s) }.normalized();
+        }
+        // |e| ≤ 2⁻¹⁰: e² fits an `i64` (2⁴⁴ in bits) and 3/8 of it is
+        // ⌊3·e²/8⌋, the product by 3/8 (3·2²⁹) shifted; |k| < 2.
+        let k = (1 << 32) - (e >> 1) + ((3 * ((e * e) >> 32)) >> 3);
+        Self { c: Scalar::from_bits(mul(c, k)), s: Scalar::from_bits(mul(s, k)) }
+    }
+
+    /// [`integrate`](Self::integrate) with every operation saturating, for a
+    /// turn of 1 rad or more or a rotation far from unit length.
+    #[cold]
+    #[inline(never)]
+    fn integrate_saturating(self, delta: Scalar) -> Self {
         const THREE_EIGHTHS: Scalar = Scalar::lit("0.375");
         // A factor below 1 in magnitude (the turn, a turned rotation's parts,
         // `e` in the series' range, 3/8) skips the saturation test of its
         // products ([`mul_below_one`], the same bits; a product's factors
-        // commute), and the function is inlined into the solver's loop
-        // (mixed 180 steps: 36.5 M instructions out of line before; 908.8 ->
-        // 902.5 M in all).
+        // commute).
         let mul = |a: Scalar, b: Scalar| if below_one(a) { mul_below_one(a, b) } else { a * b };
         let c = self.c - mul(delta, self.s);
         let s = self.s + mul(delta, self.c);
         let turned = below_one(c) && below_one(s);
         let (cc, ss) = if turned { (mul_below_one(c, c), mul_below_one(s, s)) } else { (c * c, s * s) };
         let e = cc + ss - Scalar::ONE;
-        if e <= SERIES_LIMIT && e >= -SERIES_LIMIT {
+        if e.to_bits().unsigned_abs() <= SERIES_LIMIT {
             let half_e = Scalar::from_bits(e.to_bits() >> 1);
             let k = Scalar::ONE - half_e + mul_below_one(THREE_EIGHTHS, mul_below_one(e, e));
             if turned {
@@ -230,6 +262,35 @@ mod tests {
             };
             let (e_series, e_exact) = (err(q), err(exact));
             assert!(e_series <= e_exact.max(1e-7) * 2.0, "{step}: series {e_series:e}, exact {e_exact:e}");
+        }
+    }
+
+    #[test]
+    fn integrate_gives_the_saturating_operations_bits() {
+        // Random parts below 2 and turns below 1 (the unchecked path), and
+        // some at and past those edges, against the all-saturating path.
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x as i64
+        };
+        let edges =
+            [0, 1, -1, 1 << 32, -(1 << 32), (1 << 33) - 1, -(1 << 33) + 1, 1 << 33, i64::MAX, i64::MIN];
+        for k in 0..200_000 {
+            let (c, s, d) = match k % 4 {
+                0 => (next() >> 30, next() >> 30, next() >> 31),
+                1 => (next() >> 31, next() >> 31, next() >> 40),
+                2 => (edges[(k / 4) % edges.len()], next() >> 31, next() >> 31),
+                _ => {
+                    let q = Rot::from_angle(Scalar::from_bits(next() >> 29));
+                    (q.c.to_bits(), q.s.to_bits(), next() >> (32 + (k / 4) % 28))
+                }
+            };
+            let q = Rot { c: Scalar::from_bits(c), s: Scalar::from_bits(s) };
+            let d = Scalar::from_bits(d);
+            assert_eq!(q.integrate(d), q.integrate_saturating(d), "{q:?} {d:?}");
         }
     }
 
