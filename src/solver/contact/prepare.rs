@@ -400,7 +400,8 @@ fn mul_bits(a: i64, b: i64) -> i64 {
 /// per pair in [`Shared::small`], and here for the arms) none of those
 /// operations can saturate, and the plain integer operations give the same
 /// bits without a test on each (the saturating form took about 100
-/// instructions a point, with these 50 fewer). With |v|, |ω|, |r| < 2¹³ and
+/// instructions a point, this one about 55 with its checks; net, large
+/// scene, 20 steps: 2,384.0 → 2,374.2 M). With |v|, |ω|, |r| < 2¹³ and
 /// |n| < 2: |ω·r| < 2²⁶, each velocity < 2²⁷, their difference < 2²⁸ and
 /// each term of the dot product < 2²⁹, all far inside the ±2³¹ of a `Scalar`
 /// (and every product's ⌊·/2³²⌋ fits an `i64`).
