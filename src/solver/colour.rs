@@ -113,11 +113,11 @@ pub(crate) fn build(
     // and their 2×2 blocks meet few mixed blocks. The lanes of a colour are
     // independent, so their order within it changes no result.
     let mut twos = [0u32; RUNS];
-    for (k, arb) in arbiters.iter_mut().enumerate() {
-        let Some(scratch) = solver.scratch.get_mut(k) else {
-            arb.solve = false;
-            continue;
-        };
+    // An arbiter beyond the scratch is not solved.
+    for arb in arbiters.iter_mut().skip(solver.scratch.len()) {
+        arb.solve = false;
+    }
+    for (arb, scratch) in arbiters.iter_mut().zip(solver.scratch.iter_mut()) {
         scratch.colour = NONE;
         let slot = &mut scratch.colour;
         if !arb.solve {

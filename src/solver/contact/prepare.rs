@@ -66,7 +66,37 @@ impl Side {
     /// An anchor in body radii (Q3.29), each component clamped to ±[`ARM_MAX`].
     #[inline(always)]
     fn anchor(&self, r: Vector2) -> [i64; 2] {
-        [lane(r.x * self.inv_radius, FR, ARM_MAX), lane(r.y * self.inv_radius, FR, ARM_MAX)]
+        [arm_lane(r.x, self.inv_radius), arm_lane(r.y, self.inv_radius)]
+    }
+}
+
+/// `lane(x * y, FR, ARM_MAX)` from the exact product, without the saturating
+/// product's middle word: the same value.
+///
+/// The product saturates when its high word is outside [−2³¹, 2³¹); then
+/// `lane` clamps the saturated value to ∓ or ±[`ARM`] by the sign, as here.
+/// Otherwise s = ⌊x·y/2³²⌋ fits `i64`, and `lane` takes ⌊s/8⌋ plus bit 2 of
+/// s, which is (⌊s/4⌋ + 1) >> 1 = ((⌊x·y/2³⁴⌋ + 1) >> 1): one shift of the
+/// product instead of the middle word and a bit test (about 4 instructions an
+/// anchor, eight anchors an arbiter).
+#[inline(always)]
+fn arm_lane(x: Scalar, y: Scalar) -> i64 {
+    let full = i128::from(x.to_bits()).wrapping_mul(i128::from(y.to_bits()));
+    let hi = (full >> 64) as i64;
+    if (hi as u64).wrapping_add(1 << 31) >> 32 == 0 {
+        sym((((full >> (32 + (32 - FR) - 1)) as i64) + 1) >> 1, ARM)
+    } else {
+        arm_saturated(hi)
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn arm_saturated(hi: i64) -> i64 {
+    if hi < 0 {
+        -ARM
+    } else {
+        ARM
     }
 }
 
@@ -285,6 +315,9 @@ struct Shared<'a> {
     n: [i64; 2],
     t: [i64; 2],
     friction: u128,
+    /// Both bodies' velocities within 2¹³ and the normal's components
+    /// within 2: see [`approach`].
+    small: bool,
 }
 
 /// What the pair keeps of a point once its fields are written: k̂ and r̂ of the
@@ -338,13 +371,82 @@ fn point<const BASE: usize>(c: &Shared, src: &ContactPoint, blk: &mut Block, l: 
     put_at(f::PHI, phi);
     put_at(f::CPHI, if phi > 1 << lanes::FPHI { (lambda_max << lanes::FPHI) / phi } else { lambda_max });
     put_at(f::BASE, lane(src.separation, FS, 4095));
-    let dv = c.b.velocity_at_offset(src.anchor_b) - c.a.velocity_at_offset(src.anchor_a);
     // [`lanes::velocity`]: saturated at the wall.
-    put_at(f::VREL, lane(dv.dot(c.normal), lanes::FV, 2048));
+    put_at(f::VREL, lane(approach(c, src), lanes::FV, 2048));
     put_at(f::MAXD, 0);
     put_at(f::TOT, 0);
     PointOut { k_n, r_n, arms_n: (ran, rbn), masses: [pair.mass(r_n), pair.mass(r_t)] }
 }
+
+/// Whether every value lies in [−2^`k`, 2^`k`): then x + 2^`k` is below
+/// 2^(`k` + 1) as a `u64` (any other x lands at or above it, wrapped or
+/// not), and so is the `or` of them all exactly when each is.
+#[inline(always)]
+fn within<const N: usize>(xs: [i64; N], k: u32) -> bool {
+    xs.iter().fold(0u64, |acc, &x| acc | x.wrapping_add(1 << k).cast_unsigned()) < 1 << (k + 1)
+}
+
+/// `⌊a·b/2³²⌋` of two `Scalar` bit patterns whose product fits: the
+/// saturating product's value when it does not saturate.
+#[inline(always)]
+fn mul_bits(a: i64, b: i64) -> i64 {
+    ((i128::from(a) * i128::from(b)) >> 32) as i64
+}
+
+/// The approach speed (v_B(r_B) − v_A(r_A))·n at a point, as the saturating
+/// `Scalar` operations give it.
+///
+/// When the bodies' velocities, the arms and the normal are small (checked
+/// per pair in [`Shared::small`], and here for the arms) none of those
+/// operations can saturate, and the plain integer operations give the same
+/// bits without a test on each (the saturating form took about 100
+/// instructions a point, this one about 55 with its checks; net, large
+/// scene, 20 steps: 2,384.0 → 2,374.2 M). With |v|, |ω|, |r| < 2¹³ and
+/// |n| < 2: |ω·r| < 2²⁶, each velocity < 2²⁷, their difference < 2²⁸ and
+/// each term of the dot product < 2²⁹, all far inside the ±2³¹ of a `Scalar`
+/// (and every product's ⌊·/2³²⌋ fits an `i64`).
+#[inline(always)]
+fn approach(c: &Shared, src: &ContactPoint) -> Scalar {
+    let side = |body: &Body, r: Vector2| (body.linear_velocity, body.angular_velocity, r);
+    approach_of([side(c.a, src.anchor_a), side(c.b, src.anchor_b)], c.normal, c.small)
+}
+
+/// [`approach`] from each body's velocity, angular velocity and arm, the
+/// normal and the pair's [`Shared::small`].
+#[inline(always)]
+fn approach_of(
+    [(va, wa, ra), (vb, wb, rb)]: [(Vector2, Scalar, Vector2); 2],
+    n: Vector2,
+    small: bool,
+) -> Scalar {
+    let arms = [ra.x.to_bits(), ra.y.to_bits(), rb.x.to_bits(), rb.y.to_bits()];
+    if small && within(arms, SMALL) {
+        let at = |v: Vector2, w: Scalar, r: Vector2| {
+            let w = w.to_bits();
+            [v.x.to_bits() - mul_bits(w, r.y.to_bits()), v.y.to_bits() + mul_bits(w, r.x.to_bits())]
+        };
+        let (a, b) = (at(va, wa, ra), at(vb, wb, rb));
+        Scalar::from_bits(mul_bits(b[0] - a[0], n.x.to_bits()) + mul_bits(b[1] - a[1], n.y.to_bits()))
+    } else {
+        // [`Body::velocity_at_offset`] of each.
+        let dv = (vb + Vector2::cross_sv(wb, rb)) - (va + Vector2::cross_sv(wa, ra));
+        dv.dot(n)
+    }
+}
+
+/// Whether both bodies' velocities lie within [`approach`]'s bound and the
+/// normal's components within 2: [`Shared::small`].
+#[inline(always)]
+fn small_pair([(va, wa), (vb, wb)]: [(Vector2, Scalar); 2], n: Vector2) -> bool {
+    within([va.x, va.y, wa, vb.x, vb.y, wb].map(Scalar::to_bits), SMALL)
+        && within([n.x.to_bits(), n.y.to_bits()], SMALL_NORMAL)
+}
+
+/// The bound of [`approach`]'s plain path on velocities, angular velocities
+/// and arms: 2¹³ (m/s, rad/s, m) in `Scalar` bits.
+const SMALL: u32 = 32 + 13;
+/// Its bound on the normal's components: 2.
+const SMALL_NORMAL: u32 = 32 + 1;
 
 /// Zeroes an unused point's fields, from field `BASE` on, in lane `l`:
 /// nothing pushes, nothing is applied.
@@ -400,6 +502,10 @@ pub(crate) fn prepare(
         n,
         t,
         friction: u128::from(arb.friction.max(ZERO).to_bits().unsigned_abs()),
+        small: small_pair(
+            [(a.linear_velocity, a.angular_velocity), (b.linear_velocity, b.angular_velocity)],
+            arb.normal,
+        ),
     };
     let [first, second] = &arb.points;
     let one = point::<{ f::P[0] }>(&shared, first, blk, l);
@@ -627,6 +733,48 @@ mod tests {
         }
         assert_eq!(lane(Scalar::from_bits(i64::MIN), FU, 1), -(1 << FU));
         assert_eq!(lane(Scalar::from_bits(i64::MAX), FU, 1), 1 << FU);
+    }
+
+    /// The anchor from the exact product against `lane` of the saturating
+    /// one, across the range and at the saturation edges.
+    #[test]
+    fn arm_lane_matches_lane_of_the_product() {
+        let mut seed = 0x0bad_5eed_1234_5678u64;
+        let mut next = || crate::solver::xorshift(&mut seed);
+        let edges = [0i64, 1, 2, 3, 4, 5, 7, 8, 1 << 32, (1 << 32) - 1, i64::MAX, i64::MIN, i64::MIN + 1];
+        let randoms: [i64; 4_000] = core::array::from_fn(|_| next() as i64 >> (next() % 64));
+        for &x in edges.iter().chain(randoms.iter()) {
+            let y = next() as i64 >> (next() % 64);
+            for (a, b) in [(x, y), (y, x), (x, x), (x, -y), (x, 1 << 31), (x, 3 << 29)] {
+                let (a, b) = (Scalar::from_bits(a), Scalar::from_bits(b));
+                assert_eq!(arm_lane(a, b), lane(a * b, FR, ARM_MAX), "{a:?} {b:?}");
+            }
+        }
+    }
+
+    /// The plain path of [`approach_of`] against the saturating one, at
+    /// magnitudes across its bounds (where the plain path is taken, the two
+    /// agree; beyond them, the saturating path is the one taken).
+    #[test]
+    fn approach_plain_path_matches_saturating() {
+        let mut seed = 0x05ee_d0fa_11c0_ffee_u64;
+        let mut next = || crate::solver::xorshift(&mut seed);
+        let mut plain = 0;
+        for _ in 0..50_000 {
+            // Magnitudes from 2³⁹ to 2⁴⁶ in bits, around the bound 2⁴⁵; the
+            // normal's from 2³³ to 2³⁵, around its bound 2³³, or a unit one.
+            let mut val = |shift: u64| Scalar::from_bits(next() as i64 >> (shift + next() % 8));
+            let (va, vb) = (Vector2::new(val(17), val(17)), Vector2::new(val(17), val(17)));
+            let (ra, rb) = (Vector2::new(val(17), val(17)), Vector2::new(val(17), val(17)));
+            let (wa, wb) = (val(17), val(17));
+            let n = Vector2::new(val(28), val(28));
+            let small = small_pair([(va, wa), (vb, wb)], n);
+            let sides = [(va, wa, ra), (vb, wb, rb)];
+            let want = approach_of(sides, n, false);
+            assert_eq!(approach_of(sides, n, small), want, "{sides:?} {n:?}");
+            plain += usize::from(small);
+        }
+        assert!(plain > 5_000, "{plain}");
     }
 
     /// 1/k from r̂ in one word against its definition in i128 (r̂·2^(4 − shift),
