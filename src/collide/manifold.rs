@@ -96,9 +96,12 @@ impl Manifold {
         // A turned body's rotation has both components below 1: its products
         // skip the saturation test (`mul_below_one`), the same bits.
         if below_one(frame.q.c) && below_one(frame.q.s) {
-            Self::from_local_by(frame, other_position, normal, local, frame_is_b, mul_below_one)
+            Self::from_local_by(frame, other_position, normal, local, frame_is_b, BelowOne)
+        } else if frame.q == Rot::IDENTITY {
+            let frame = Transform { p: frame.p, q: Rot::IDENTITY };
+            Self::from_local_by(frame, other_position, normal, local, frame_is_b, ByIdentity)
         } else {
-            Self::from_local_by(frame, other_position, normal, local, frame_is_b, |k, x| k * x)
+            Self::from_local_by(frame, other_position, normal, local, frame_is_b, Saturating)
         }
     }
 
@@ -111,17 +114,17 @@ impl Manifold {
         normal: Vector2,
         local: &[LocalPoint],
         frame_is_b: bool,
-        mul: impl Fn(Scalar, Scalar) -> Scalar,
+        mul: impl Product,
     ) -> Self {
         let mut m = Self::EMPTY;
         let q = frame.q;
         let n = match Direction::of(normal) {
-            Direction::Any(n) => rotate_by(q, n, &mul),
+            Direction::Any(n) => rotate_by(q, n, mul),
             d => d.rotated(q),
         };
         m.normal = if frame_is_b { -n } else { n };
         for (slot, lp) in m.points.iter_mut().zip(local) {
-            let anchor_frame = rotate_by(q, lp.point, &mul);
+            let anchor_frame = rotate_by(q, lp.point, mul);
             let point = frame.p + anchor_frame;
             let anchor_other = point - other_position;
             let (anchor_a, anchor_b) =
@@ -137,8 +140,8 @@ impl Manifold {
 /// saturating one, or [`mul_below_one`] when both of `q`'s components are
 /// below 1): the same bits.
 #[inline(always)]
-pub(crate) fn rotate_by(q: Rot, v: Vector2, mul: impl Fn(Scalar, Scalar) -> Scalar) -> Vector2 {
-    Vector2::new(mul(q.c, v.x) - mul(q.s, v.y), mul(q.s, v.x) + mul(q.c, v.y))
+pub(crate) fn rotate_by(q: Rot, v: Vector2, mul: impl Product) -> Vector2 {
+    Vector2::new(mul.mul(q.c, v.x) - mul.mul(q.s, v.y), mul.mul(q.s, v.x) + mul.mul(q.c, v.y))
 }
 
 /// `xf.inv_mul(other)`: `other` in `xf`'s frame, `(q⁻¹·(p' − p), q⁻¹∘q')`, the
@@ -148,7 +151,12 @@ pub(crate) fn rotate_by(q: Rot, v: Vector2, mul: impl Fn(Scalar, Scalar) -> Scal
 #[inline(always)]
 pub(crate) fn relative_transform(xf: Transform, other: Transform) -> Transform {
     if below_one(xf.q.c) && below_one(xf.q.s) {
-        relative_transform_by(xf, other, mul_below_one)
+        relative_transform_by(xf, other, BelowOne)
+    } else if xf.q == Rot::IDENTITY {
+        // An unrotated body (the ground, a box that has not turned): the
+        // products by 1 and 0 are exact, `other.p − xf.p` and `other.q`
+        // come out of the additions of 0 unchanged.
+        relative_transform_by(Transform { p: xf.p, q: Rot::IDENTITY }, other, ByIdentity)
     } else {
         xf.inv_mul(other)
     }
@@ -158,17 +166,62 @@ pub(crate) fn relative_transform(xf: Transform, other: Transform) -> Transform {
 /// [`Transform::inv_mul`] computes it: `inv_rotate` of the offset, then the
 /// inverse rotation `(c, −s)` composed with `other.q`.
 #[inline(always)]
-fn relative_transform_by(
-    xf: Transform,
-    other: Transform,
-    mul: impl Fn(Scalar, Scalar) -> Scalar,
-) -> Transform {
+fn relative_transform_by(xf: Transform, other: Transform, mul: impl Product) -> Transform {
     let (c, s) = (xf.q.c, xf.q.s);
     let d = other.p - xf.p;
-    let p = Vector2::new(mul(c, d.x) + mul(s, d.y), mul(c, d.y) - mul(s, d.x));
+    let p = Vector2::new(mul.mul(c, d.x) + mul.mul(s, d.y), mul.mul(c, d.y) - mul.mul(s, d.x));
     let (ns, o) = (-s, other.q);
-    let q = Rot { c: mul(c, o.c) - mul(ns, o.s), s: mul(ns, o.c) + mul(c, o.s) };
+    let q = Rot { c: mul.mul(c, o.c) - mul.mul(ns, o.s), s: mul.mul(ns, o.c) + mul.mul(c, o.s) };
     Transform { p, q }
+}
+
+/// A product `k * x` by a factor `k` of a known kind, with the same bits as
+/// the saturating product. A trait of zero-sized types rather than a
+/// closure: passed as closures, the products were left out of line, a call
+/// each (13 M instructions in 20 steps of the box pyramid).
+pub(crate) trait Product: Copy {
+    /// `k * x`.
+    fn mul(self, k: Scalar, x: Scalar) -> Scalar;
+}
+
+/// The saturating product.
+#[derive(Clone, Copy)]
+pub(crate) struct Saturating;
+
+impl Product for Saturating {
+    #[inline(always)]
+    fn mul(self, k: Scalar, x: Scalar) -> Scalar {
+        k * x
+    }
+}
+
+/// [`mul_below_one`]: for `|k| < 1` (see [`below_one`]).
+#[derive(Clone, Copy)]
+pub(crate) struct BelowOne;
+
+impl Product for BelowOne {
+    #[inline(always)]
+    fn mul(self, k: Scalar, x: Scalar) -> Scalar {
+        mul_below_one(k, x)
+    }
+}
+
+/// For `k` a component of [`Rot::IDENTITY`] (exactly 1 or 0): the saturating
+/// product is then exactly `x` or 0 (`x · 2³² / 2³²` always fits). With `k`
+/// a constant (a transform built with `Rot::IDENTITY`), the compiler folds
+/// the product away, and the additions of 0 after it.
+#[derive(Clone, Copy)]
+pub(crate) struct ByIdentity;
+
+impl Product for ByIdentity {
+    #[inline(always)]
+    fn mul(self, k: Scalar, x: Scalar) -> Scalar {
+        if k == Scalar::ONE {
+            x
+        } else {
+            ZERO
+        }
+    }
 }
 
 /// A contact point in the local frame of the body a pair function works in.
@@ -278,10 +331,12 @@ mod tests {
             let (xa, xb) = (Transform::new(point(), qa), Transform::new(point(), qb));
             assert_eq!(relative_transform(xa, xb), xa.inv_mul(xb), "{xa:?} {xb:?}");
             let v = point();
-            let mul = |k: Scalar, x: Scalar| k * x;
-            assert_eq!(rotate_by(qa, v, mul), qa.rotate(v));
+            assert_eq!(rotate_by(qa, v, Saturating), qa.rotate(v));
             if below_one(qa.c) && below_one(qa.s) {
-                assert_eq!(rotate_by(qa, v, mul_below_one), qa.rotate(v), "{qa:?} {v:?}");
+                assert_eq!(rotate_by(qa, v, BelowOne), qa.rotate(v), "{qa:?} {v:?}");
+            }
+            if qa == Rot::IDENTITY {
+                assert_eq!(rotate_by(Rot::IDENTITY, v, ByIdentity), qa.rotate(v), "{v:?}");
             }
         }
     }
