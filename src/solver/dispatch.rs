@@ -104,3 +104,83 @@ pub(crate) fn run<K: Kernel>(solver: &mut Solver<'_>, sweep: Sweep, k: &K) {
 fn run_avx2<K: Kernel>(solver: &mut Solver<'_>, sweep: Sweep, k: &K) {
     solver.runs::<K, true>(sweep, k);
 }
+
+/// The eight-lane operations that plain lane code does not compile to well,
+/// written with AVX2 intrinsics for the kernels' eight-lane instantiation.
+///
+/// Only the contact kernels' `W = 8` instantiation calls these (the lane
+/// types [`L`](super::lanes::L) and the kernels' `gather` choose them by the
+/// width), and that instantiation is reached only from [`run_avx2`], which
+/// runs only on a processor with AVX2 (and, in the kernels' unit test, only
+/// after `is_x86_feature_detected!("avx2")`). Each is exact integer
+/// arithmetic computing the same bits as the portable code it replaces.
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+pub(crate) mod avx2 {
+    use core::arch::x86_64::{
+        __m256i, _mm256_add_epi64, _mm256_blend_epi32, _mm256_mul_epi32, _mm256_permute2x128_si256,
+        _mm256_set1_epi64x, _mm256_sll_epi64, _mm256_srl_epi64, _mm256_srli_epi64, _mm256_unpackhi_epi32,
+        _mm256_unpackhi_epi64, _mm256_unpacklo_epi32, _mm256_unpacklo_epi64, _mm_cvtsi32_si128,
+    };
+    use core::mem::transmute;
+
+    use crate::solver::BodyLanes;
+
+    /// `(a·b + 2^(K−1)) >> K` on the exact 64-bit products, narrowed to
+    /// `i32` ([`lanes::mul`](crate::solver::lanes::mul)), eight lanes: the
+    /// even lanes' products from `vpmuldq` in place, the odd lanes' from the
+    /// lanes shifted down, each rounded and shifted into its own half of the
+    /// 64-bit lane (down by K, up by 32 − K: the low 32 bits of the shift are
+    /// the narrowing), then blended. Nine instructions; the lane loop
+    /// compiled to twelve (sign extensions, two products, and the shuffles
+    /// that pack the halves).
+    #[inline(always)]
+    pub(crate) fn mul<const K: u32>(a: [i32; 8], b: [i32; 8]) -> [i32; 8] {
+        const { assert!(K >= 1 && K <= 32) };
+        // SAFETY: the transmutes are between plain integer types of 32
+        // bytes, valid for every bit pattern. The intrinsics need AVX2:
+        // only the kernels' eight-lane instantiation calls this, reached
+        // only from `run_avx2`, which runs only when AVX2 was detected (see
+        // the module's note).
+        unsafe {
+            let (a, b) = (transmute::<[i32; 8], __m256i>(a), transmute::<[i32; 8], __m256i>(b));
+            let round = _mm256_set1_epi64x(1i64 << (K - 1));
+            let even = _mm256_add_epi64(_mm256_mul_epi32(a, b), round);
+            let odd = _mm256_mul_epi32(_mm256_srli_epi64::<32>(a), _mm256_srli_epi64::<32>(b));
+            let odd = _mm256_add_epi64(odd, round);
+            let even = _mm256_srl_epi64(even, _mm_cvtsi32_si128(K as i32));
+            let odd = _mm256_sll_epi64(odd, _mm_cvtsi32_si128(32 - K as i32));
+            transmute::<__m256i, [i32; 8]>(_mm256_blend_epi32::<0b1010_1010>(even, odd))
+        }
+    }
+
+    /// Fields 0–5 of the records `idx` selects (an index out of range reads
+    /// [`BodyLanes::EMPTY`]), one array of eight lanes per field: each lane's
+    /// whole 32-byte record in one load, then an 8×8 transpose by 32-bit and
+    /// 64-bit interleaves and 128-bit permutes (the two fields not needed
+    /// left out).
+    #[inline(always)]
+    pub(crate) fn gather(bodies: &[BodyLanes], idx: [i32; 8]) -> [[i32; 8]; 6] {
+        let row = |i: i32| bodies.get(i as u32 as usize).unwrap_or(&BodyLanes::EMPTY).0;
+        let [i0, i1, i2, i3, i4, i5, i6, i7] = idx;
+        // SAFETY: as in `mul`: plain integer transmutes, and AVX2 intrinsics
+        // reached only under `run_avx2`.
+        unsafe {
+            let r = |i: i32| transmute::<[i32; 8], __m256i>(row(i));
+            let (r0, r1, r2, r3) = (r(i0), r(i1), r(i2), r(i3));
+            let (r4, r5, r6, r7) = (r(i4), r(i5), r(i6), r(i7));
+            // Lanes 0/1, 2/3, …, interleaved: t0 = r0[0] r1[0] r0[1] r1[1] | r0[4] r1[4] r0[5] r1[5].
+            let (t0, t1) = (_mm256_unpacklo_epi32(r0, r1), _mm256_unpackhi_epi32(r0, r1));
+            let (t2, t3) = (_mm256_unpacklo_epi32(r2, r3), _mm256_unpackhi_epi32(r2, r3));
+            let (t4, t5) = (_mm256_unpacklo_epi32(r4, r5), _mm256_unpackhi_epi32(r4, r5));
+            let (t6, t7) = (_mm256_unpacklo_epi32(r6, r7), _mm256_unpackhi_epi32(r6, r7));
+            // u0 = field 0 of lanes 0–3 | field 4 of lanes 0–3; u1: 1 | 5; u2: 2 | 6; u3: 3 | 7.
+            let (u0, u1) = (_mm256_unpacklo_epi64(t0, t2), _mm256_unpackhi_epi64(t0, t2));
+            let (u2, u3) = (_mm256_unpacklo_epi64(t1, t3), _mm256_unpackhi_epi64(t1, t3));
+            let (u4, u5) = (_mm256_unpacklo_epi64(t4, t6), _mm256_unpackhi_epi64(t4, t6));
+            let (u6, u7) = (_mm256_unpacklo_epi64(t5, t7), _mm256_unpackhi_epi64(t5, t7));
+            let lo = |x, y| transmute::<__m256i, [i32; 8]>(_mm256_permute2x128_si256::<0x20>(x, y));
+            let hi = |x, y| transmute::<__m256i, [i32; 8]>(_mm256_permute2x128_si256::<0x31>(x, y));
+            [lo(u0, u4), lo(u1, u5), lo(u2, u6), lo(u3, u7), hi(u0, u4), hi(u1, u5)]
+        }
+    }
+}

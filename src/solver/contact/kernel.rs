@@ -197,6 +197,17 @@ type Pose<const W: usize> = [L<W>; 3];
 /// Reads the velocity and motion of the bodies in `idx`'s lanes.
 #[inline(always)]
 fn gather<const W: usize>(bodies: &[BodyLanes], idx: L<W>) -> (Vel<W>, Pose<W>) {
+    // Eight lanes (the AVX2 kernels only, see `L`): whole records and a
+    // transpose, where the loop below loads field by field into vector
+    // inserts (measured with the products: large 20 2,400.5 M → 2,325.6 M
+    // instructions, mixed 901.2 M → 865.3 M).
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    if W == LANES {
+        const { assert!(VX == 0 && VY == 1 && WR == 2 && DR == 3 && DPX == 4 && DPY == 5) };
+        let [vx, vy, w, dr, dpx, dpy] = crate::solver::dispatch::avx2::gather(bodies, idx.to8());
+        let l = L::from8;
+        return ([l(vx), l(vy), l(w)], [l(dpx), l(dpy), l(dr)]);
+    }
     // Each lane's record in place (no copy), or an empty one out of range.
     let mut rows = [&BodyLanes::EMPTY.0; W];
     for (r, &b) in rows.iter_mut().zip(idx.0.iter()) {
@@ -1131,6 +1142,11 @@ mod tests {
     /// on random and extreme inputs.
     #[test]
     fn eight_lanes_at_once_equal_one_at_a_time() {
+        // Eight lanes run AVX2 instructions on x86-64 (see `L`).
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            return;
+        }
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
         let (mut impacts, mut pushed) = (0, 0);
         for round in 0..12_000 {
