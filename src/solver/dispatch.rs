@@ -11,7 +11,9 @@
 //!
 //! This module is the crate's only `unsafe` code: calling a function compiled
 //! for AVX2 is unsafe because running it on a processor without AVX2 is
-//! undefined behaviour. The one call site checks
+//! undefined behaviour, and so are the few AVX2 intrinsics of `avx2` (the
+//! eight-lane gather and products, which plain lane code compiles badly,
+//! reached only from that function). The one call site checks
 //! `is_x86_feature_detected!("avx2")` first (cached), and
 //! [`limit_simd_level`] can only lower the level, never raise it past what
 //! was detected. Measured gain: see the README's performance section (the
