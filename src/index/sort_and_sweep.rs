@@ -523,7 +523,10 @@ mod tests {
         }
     }
 
-    /// The sorted pairs of body slots a sink keeps from `find`.
+    /// The sorted pairs of body slots a sink keeps from `find`, each of which
+    /// `find` must report once: the engine removes repeats only for a game's
+    /// own index (`collision::broad_phase`), so a built-in index that
+    /// reported a pair twice would solve it twice.
     fn pairs(slots: &[u32], find: impl FnOnce(&mut PairSink<'_>), out: &mut [(u32, u32); N * N]) -> usize {
         let accept = |_: u32, _: u32| true;
         let mut sink = PairSink::new(out, slots, false, &accept);
@@ -531,13 +534,19 @@ mod tests {
         let n = sink.len;
         let kept = &mut out[..n];
         kept.sort_unstable();
-        super::super::dedup_sorted(kept)
+        let unique = super::super::dedup_sorted(kept);
+        assert_eq!(unique, n, "a pair reported more than once");
+        unique
     }
 
     #[test]
     fn the_in_place_sweep_finds_the_brute_force_pairs_from_any_start() {
         let mut scratch = [0u32; N];
         let mut index = SortAndSweepIndex::new(&mut scratch[..]);
+        // The game-selectable sweep (`Index::SortAndSweep`), which keeps its
+        // own order between calls.
+        let mut plain_scratch = [0u32; N];
+        let mut plain = SortAndSweepIndex::new(&mut plain_scratch[..]);
         let (mut expected, mut got) = ([(0u32, 0u32); N * N], [(0u32, 0u32); N * N]);
         for seed in 1..80u64 {
             let mut original = [Proxy { aabb: Rect::default(), is_static: false }; N];
@@ -550,6 +559,8 @@ mod tests {
                 *s = 3 * k as u32 + (seed as u32 % 3);
             }
             let n_expected = pairs(&slots, |s| BruteForceIndex.find_pairs(&original, s), &mut expected);
+            let n_plain = pairs(&slots, |s| plain.find_pairs(&original, s), &mut got);
+            assert_eq!(&got[..n_plain], &expected[..n_expected], "seed {seed}: plain sweep");
             let (mut proxies, mut sorted_slots) = (original, slots);
             // From slot order: the scratch sort and the in-place permutation.
             index.sort_in_place(&mut proxies, &mut sorted_slots, false);
