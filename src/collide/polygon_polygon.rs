@@ -232,23 +232,19 @@ fn transform_vertices_by<'o>(
 ) -> &'o [Vector2] {
     let count = poly.vertices().len().min(MAX_POLYGON_VERTICES);
     let (c, s, p) = (xf.q.c, xf.q.s, xf.p);
-    if let ([v0, v1, v2, v3], [o0, o1, o2, o3, ..]) = (poly.vertices(), out.as_mut_slice()) {
-        if v1.y == v0.y && v2.x == v1.x && v3.y == v2.y && v3.x == v0.x {
-            // An axis-aligned rectangle: two x and two y coordinates, each
-            // product taken once (8 instead of the loop's 10).
-            let ([cx0, sx0], [cx1, sx1]) =
-                ([mul.mul(c, v0.x), mul.mul(s, v0.x)], [mul.mul(c, v1.x), mul.mul(s, v1.x)]);
-            let ([sy0, cy0], [sy1, cy1]) =
-                ([mul.mul(s, v0.y), mul.mul(c, v0.y)], [mul.mul(s, v2.y), mul.mul(c, v2.y)]);
-            // `Vector2 + p` written out by component (the same additions):
-            // as four more `Vector2::add` calls here, the compiler stopped
-            // inlining that function (13 instructions a call).
-            *o0 = Vector2::new((cx0 - sy0) + p.x, (sx0 + cy0) + p.y);
-            *o1 = Vector2::new((cx1 - sy0) + p.x, (sx1 + cy0) + p.y);
-            *o2 = Vector2::new((cx1 - sy1) + p.x, (sx1 + cy1) + p.y);
-            *o3 = Vector2::new((cx0 - sy1) + p.x, (sx0 + cy1) + p.y);
-            return out.get(..4).unwrap_or(&[]);
-        }
+    if let (Some(([x0, x1], [y0, y1])), [o0, o1, o2, o3, ..]) = (axis_rectangle(poly), out.as_mut_slice()) {
+        // An axis-aligned rectangle: two x and two y coordinates, each
+        // product taken once (8 instead of the loop's 10).
+        let ([cx0, sx0], [cx1, sx1]) = ([mul.mul(c, x0), mul.mul(s, x0)], [mul.mul(c, x1), mul.mul(s, x1)]);
+        let ([sy0, cy0], [sy1, cy1]) = ([mul.mul(s, y0), mul.mul(c, y0)], [mul.mul(s, y1), mul.mul(c, y1)]);
+        // `Vector2 + p` written out by component (the same additions):
+        // as four more `Vector2::add` calls here, the compiler stopped
+        // inlining that function (13 instructions a call).
+        *o0 = Vector2::new((cx0 - sy0) + p.x, (sx0 + cy0) + p.y);
+        *o1 = Vector2::new((cx1 - sy0) + p.x, (sx1 + cy0) + p.y);
+        *o2 = Vector2::new((cx1 - sy1) + p.x, (sx1 + cy1) + p.y);
+        *o3 = Vector2::new((cx0 - sy1) + p.x, (sx0 + cy1) + p.y);
+        return out.get(..4).unwrap_or(&[]);
     }
     let mut prev: Option<(Vector2, [Scalar; 4])> = None;
     for (slot, v) in out.iter_mut().zip(poly.vertices()) {
@@ -340,6 +336,20 @@ fn box_separation(box_vertices: [Vector2; 4], lo: Vector2, hi: Vector2) -> (usiz
     best
 }
 
+/// The two x and the two y coordinates of `poly` when it is an axis-aligned
+/// rectangle (four vertices, each edge along an axis, in the order
+/// [`PolygonPath::rectangle`] makes them: the first edge horizontal), in the
+/// order of its first two vertices and of its first and third.
+#[inline(always)]
+fn axis_rectangle(poly: &PolygonPath) -> Option<([Scalar; 2], [Scalar; 2])> {
+    match *poly.vertices() {
+        [v0, v1, v2, v3] if v1.y == v0.y && v2.x == v1.x && v3.y == v2.y && v3.x == v0.x => {
+            Some(([v0.x, v1.x], [v0.y, v2.y]))
+        }
+        _ => None,
+    }
+}
+
 /// The least and the greatest coordinates of `poly`'s vertices mapped by
 /// `xf`, the bounds of [`transform_vertices`]' output to the bit, when `poly`
 /// is an axis-aligned rectangle (as that function recognises it); `None`
@@ -354,12 +364,7 @@ fn box_separation(box_vertices: [Vector2; 4], lo: Vector2, hi: Vector2) -> (usiz
 /// building the corners (a test compares both, extreme values included).
 #[inline(always)]
 fn rectangle_bounds(poly: &PolygonPath, xf: Transform) -> Option<(Vector2, Vector2)> {
-    let &[v0, v1, v2, v3] = poly.vertices() else { return None };
-    if !(v1.y == v0.y && v2.x == v1.x && v3.y == v2.y && v3.x == v0.x) {
-        return None;
-    }
-    let xs = [v0.x, v1.x];
-    let ys = [v0.y, v2.y];
+    let (xs, ys) = axis_rectangle(poly)?;
     Some(if below_one(xf.q.c) && below_one(xf.q.s) {
         rectangle_bounds_by(xs, ys, xf, BelowOne)
     } else if xf.q == Rot::IDENTITY {
