@@ -12,7 +12,7 @@
 //! This module is the crate's only `unsafe` code: calling a function compiled
 //! for AVX2 is unsafe because running it on a processor without AVX2 is
 //! undefined behaviour, and so are the few AVX2 intrinsics of `avx2` (the
-//! eight-lane gather and products, which plain lane code compiles badly,
+//! eight-lane gather, scatter and products, which plain lane code compiles badly,
 //! reached only from that function). The one call site checks
 //! `is_x86_feature_detected!("avx2")` first (cached), and
 //! [`limit_simd_level`] can only lower the level, never raise it past what
@@ -119,9 +119,10 @@ fn run_avx2<K: Kernel>(solver: &mut Solver<'_>, sweep: Sweep, k: &K) {
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
 pub(crate) mod avx2 {
     use core::arch::x86_64::{
-        __m256i, _mm256_add_epi64, _mm256_blend_epi32, _mm256_mul_epi32, _mm256_permute2x128_si256,
-        _mm256_set1_epi64x, _mm256_sll_epi64, _mm256_srl_epi64, _mm256_srli_epi64, _mm256_unpackhi_epi32,
-        _mm256_unpackhi_epi64, _mm256_unpacklo_epi32, _mm256_unpacklo_epi64, _mm_cvtsi32_si128,
+        __m256i, _mm256_add_epi64, _mm256_blend_epi32, _mm256_blendv_epi8, _mm256_mul_epi32,
+        _mm256_permute2x128_si256, _mm256_set1_epi32, _mm256_set1_epi64x, _mm256_sll_epi64, _mm256_srl_epi64,
+        _mm256_srli_epi64, _mm256_unpackhi_epi32, _mm256_unpackhi_epi64, _mm256_unpacklo_epi32,
+        _mm256_unpacklo_epi64, _mm_cvtsi32_si128,
     };
     use core::mem::transmute;
 
@@ -183,6 +184,39 @@ pub(crate) mod avx2 {
             let lo = |x, y| transmute::<__m256i, [i32; 8]>(_mm256_permute2x128_si256::<0x20>(x, y));
             let hi = |x, y| transmute::<__m256i, [i32; 8]>(_mm256_permute2x128_si256::<0x31>(x, y));
             [lo(u0, u4), lo(u1, u5), lo(u2, u6), lo(u3, u7), hi(u0, u4), hi(u1, u5)]
+        }
+    }
+
+    /// Writes fields 0–2 of the records `idx` selects from `v` (one array of
+    /// eight lanes per field), in the lanes `m` sets (−1; 0 leaves the lane
+    /// out); an index out of range is skipped. The lanes left out get index
+    /// −1, past every record, so the bounds test each store makes anyway is
+    /// the only test a lane; fields 0 and 1 come interleaved as one 64-bit
+    /// pair a lane (which the compiler stores as one), not extracted one by
+    /// one. Written as the gather's reverse (whole records) it cost more:
+    /// fields 3–7 would need loading first.
+    #[inline(always)]
+    pub(crate) fn scatter(bodies: &mut [BodyLanes], idx: [i32; 8], m: [i32; 8], v: [[i32; 8]; 3]) {
+        // SAFETY: as in `mul`.
+        let (pairs, idx) = unsafe {
+            let x = transmute::<[i32; 8], __m256i>(v[0]);
+            let y = transmute::<[i32; 8], __m256i>(v[1]);
+            // Lanes 0, 1, 4, 5 and 2, 3, 6, 7 as (x, y) pairs.
+            let lo = transmute::<__m256i, [u64; 4]>(_mm256_unpacklo_epi32(x, y));
+            let hi = transmute::<__m256i, [u64; 4]>(_mm256_unpackhi_epi32(x, y));
+            let idx = _mm256_blendv_epi8(
+                _mm256_set1_epi32(-1),
+                transmute::<[i32; 8], __m256i>(idx),
+                transmute::<[i32; 8], __m256i>(m),
+            );
+            ([lo[0], lo[1], hi[0], hi[1], lo[2], lo[3], hi[2], hi[3]], transmute::<__m256i, [i32; 8]>(idx))
+        };
+        for ((&i, &p), &w) in idx.iter().zip(&pairs).zip(&v[2]) {
+            if let Some(b) = bodies.get_mut(i as u32 as usize) {
+                b.0[0] = p as u32 as i32;
+                b.0[1] = (p >> 32) as u32 as i32;
+                b.0[2] = w;
+            }
         }
     }
 }
