@@ -114,7 +114,7 @@ impl Rot {
             return self.integrate_saturating(delta);
         }
         // ⌊a·b⌋ in Q32.32: the saturating product's bits when it fits.
-        let mul = |a: i64, b: i64| ((i128::from(a) * i128::from(b)) >> 32) as i64;
+        let mul = crate::math::scalar::product_bits;
         // |δ·s|, |δ·c| < 2, so |c|, |s| < 4 and c² + s² < 32: nothing overflows.
         let c = c0 - mul(d, s0);
         let s = s0 + mul(d, c0);

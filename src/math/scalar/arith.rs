@@ -60,8 +60,17 @@ pub(crate) fn below_one(a: Scalar) -> bool {
 /// integration of rotations.
 #[inline(always)]
 pub(crate) fn mul_below_one(a: Scalar, b: Scalar) -> Scalar {
-    let full = i128::from(a.to_bits()).wrapping_mul(i128::from(b.to_bits()));
-    Scalar::from_bits((full >> 32) as i64)
+    Scalar::from_bits(product_bits(a.to_bits(), b.to_bits()))
+}
+
+/// `⌊a·b / 2³²⌋` of two `Scalar` bit patterns, for a caller that knows it
+/// fits an `i64`: the saturating product's bits without its test. Taken as
+/// [`middle_word`] of the 128-bit product, not a shift of it, which on
+/// x86-64 is the funnel shift `SHLD` (see there).
+#[inline(always)]
+pub(crate) fn product_bits(a: i64, b: i64) -> i64 {
+    let full = i128::from(a).wrapping_mul(i128::from(b));
+    middle_word(full as u64, (full >> 64) as i64)
 }
 
 impl Add for Scalar {

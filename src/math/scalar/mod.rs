@@ -32,7 +32,7 @@ use fixed::types::I32F32;
 
 mod arith;
 
-pub(crate) use arith::{below_one, mul_below_one};
+pub(crate) use arith::{below_one, mul_below_one, product_bits};
 use arith::{div_nonzero, saturated_by_sign};
 
 /// The fixed-point number of every physical quantity (Q32.32), with saturating

@@ -422,7 +422,7 @@ fn within<const N: usize>(xs: [i64; N], k: u32) -> bool {
 /// saturating product's value when it does not saturate.
 #[inline(always)]
 fn mul_bits(a: i64, b: i64) -> i64 {
-    ((i128::from(a) * i128::from(b)) >> 32) as i64
+    crate::math::scalar::product_bits(a, b)
 }
 
 /// The approach speed (v_B(r_B) − v_A(r_A))·n at a point, as the saturating
