@@ -615,7 +615,9 @@ impl JointLanes {
     }
 
     /// The point constraint's warm start: the accumulated λ̂ again.
-    #[inline]
+    // Inlined into the warm start's dispatch (joint 10: 1,303.0 → 1,294.3 M
+    // instructions; a call a joint a sub-step).
+    #[inline(always)]
     pub(crate) fn warm_point(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes) {
         if !self.linear {
             return;
