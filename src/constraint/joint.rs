@@ -116,9 +116,14 @@ impl Joint {
     /// masses, the step's joint softness (see `StepContext::joint_softness`),
     /// the impulses in lane formats and the pose of the first sub-step. `sa`,
     /// `sb` are the solver's copies of `a` and `b`; `h` is the sub-step.
+    ///
+    /// Written into `row` in place (whatever it held): a constraint's lanes
+    /// are some 280 bytes, and building the row and returning it cost three
+    /// copies of them a joint a step.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn prepare(
         &mut self,
+        row: &mut JointRow,
         slot: u32,
         a: &Body,
         b: &Body,
@@ -127,20 +132,17 @@ impl Joint {
         soft: Softness,
         h: Scalar,
         inv_h: Scalar,
-    ) -> JointRow {
+    ) {
         let (ma, ia) = crate::solver::inverse_mass(a);
         let (mb, ib) = crate::solver::inverse_mass(b);
         self.step_linear = Vector2::ZERO;
         let world_point = self.def.body_b.is_none();
-        let row = JointRow {
-            bodies: [self.def.body_a.index(), self.def.body_b.map_or(0, |hb| hb.index())],
-            slot,
-            world_point,
-            solve: RowSolve::Spring(SpringRow::EMPTY),
-        };
+        row.bodies = [self.def.body_a.index(), self.def.body_b.map_or(0, |hb| hb.index())];
+        row.slot = slot;
+        row.world_point = world_point;
         let anchors = [self.def.anchor_a, self.def.anchor_b];
-        let spring = |stiffness, damping, rest_length| JointRow {
-            solve: RowSolve::Spring(SpringRow {
+        let spring = |stiffness, damping, rest_length| {
+            RowSolve::Spring(SpringRow {
                 stiffness,
                 damping,
                 rest_length,
@@ -148,15 +150,18 @@ impl Joint {
                 inv_mass: [ma, mb],
                 inv_inertia: [ia, ib],
                 step_linear: Vector2::ZERO,
-            }),
-            ..row
+            })
         };
         let mut soft = soft;
         let (mut max_impulse, mut spin_damping) = (None, None);
         let (kind, motor, limits) = match self.def.kind {
-            JointKind::Spring { stiffness, rest_length } => return spring(stiffness, ZERO, rest_length),
+            JointKind::Spring { stiffness, rest_length } => {
+                row.solve = spring(stiffness, ZERO, rest_length);
+                return;
+            }
             JointKind::DampedSpring { stiffness, damping, rest_length } => {
-                return spring(stiffness, damping, rest_length)
+                row.solve = spring(stiffness, damping, rest_length);
+                return;
             }
             JointKind::Rod { length } => (ConstraintKind::Rod { length }, None, None),
             JointKind::Rope { max_length } => (ConstraintKind::Rope { max_length }, None, None),
@@ -198,10 +203,20 @@ impl Joint {
             spin_damping,
         };
         let angular = [self.angular_impulse, self.motor_impulse, self.limit_impulse];
-        let lanes = JointLanes::prepare(&masses, sa, sb, soft, inv_h, self.impulse, angular);
-        let mut c = ConstraintRow { kind, reference: self.reference, lanes };
-        c.measure(sa, sb);
-        JointRow { solve: RowSolve::Constraint(c), ..row }
+        if let RowSolve::Spring(_) = row.solve {
+            // Every field of the lanes is set below.
+            row.solve = RowSolve::Constraint(ConstraintRow {
+                kind,
+                reference: self.reference,
+                lanes: JointLanes::INACTIVE,
+            });
+        }
+        if let RowSolve::Constraint(c) = &mut row.solve {
+            c.kind = kind;
+            c.reference = self.reference;
+            c.lanes.prepare(&masses, sa, sb, soft, inv_h, self.impulse, angular);
+            c.measure(sa, sb);
+        }
     }
 
     /// A joint whose bodies are gone this step: no row, nothing applied,

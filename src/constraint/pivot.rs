@@ -18,6 +18,7 @@ pub(super) fn relative_angle(reference: Rot, a: &SolverBody, b: &SolverBody) -> 
 /// point (`world_point`) the limits and the motor act on the body's own angle
 /// and spin (θA, ωA), which is what a game means by "the wheel turns at 5
 /// rad/s", rather than on θB − θA with the world as B.
+#[inline(always)]
 pub(super) fn solve(
     j: &mut JointLanes,
     la: &mut BodyLanes,

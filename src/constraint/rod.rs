@@ -18,6 +18,7 @@ pub(super) enum Distance {
 /// One iteration of the distance constraint `|d| = length` (rod) or
 /// `|d| ≤ length` (rope: pulls only, and only when taut or about to be within
 /// this sub-step).
+#[inline(always)]
 pub(super) fn solve(
     j: &mut JointLanes,
     la: &mut BodyLanes,

@@ -134,6 +134,7 @@ impl ConstraintRow {
         }
     }
 
+    #[inline(always)]
     fn solve(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes, world_point: bool, bias: Bias) {
         let l = &mut self.lanes;
         match self.kind {
@@ -173,13 +174,16 @@ impl JointRow {
                     spring::apply(s, (a, la), (b, lb), h);
                 }
             }
-            RowSolve::Constraint(c) => {
-                if bias == Bias::Off {
+            // Each sweep with its `bias` a constant, so the inlined rows
+            // drop what the other sweep needs.
+            RowSolve::Constraint(c) => match bias {
+                Bias::On => c.solve(la, lb, self.world_point, Bias::On),
+                Bias::Off => {
                     c.lanes.pose(a, b);
                     c.measure(a, b);
+                    c.solve(la, lb, self.world_point, Bias::Off);
                 }
-                c.solve(la, lb, self.world_point, bias);
-            }
+            },
         }
     }
 }

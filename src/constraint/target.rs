@@ -17,6 +17,7 @@ use crate::solver::{BodyLanes, JointLanes};
 
 /// One iteration, in the biased and in the relax sweep alike: the spin
 /// damping, then the point.
+#[inline(always)]
 pub(super) fn solve(j: &mut JointLanes, la: &mut BodyLanes, lb: &mut BodyLanes) {
     j.solve_spin_damping(la, lb);
     j.solve_target(la, lb);

@@ -352,7 +352,7 @@ fn prepare_joints(
         // The rows are as many as the joint slots, so one is always free.
         match (a, sa, rows.get_mut(count)) {
             (Some(a), Some(sa), Some(row)) => {
-                *row = j.prepare(i.index(), a, b, sa, sb, ctx.joint_softness, ctx.h, ctx.inv_h);
+                j.prepare(row, i.index(), a, b, sa, sb, ctx.joint_softness, ctx.h, ctx.inv_h);
                 count += 1;
             }
             _ => j.deactivate(),
