@@ -73,7 +73,7 @@ use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rot, Vector2};
 
 use super::body::{BodyLanes, SolverBody, VX, VY, W};
-use super::lanes::{self, from_scalar, mul, to_scalar, FQ, FU, FV, LAMBDA_MAX, V_WALL};
+use super::lanes::{self, from_scalar, mul, sym, to_scalar, FQ, FU, FV, LAMBDA_MAX, V_WALL};
 use super::{Bias, Softness};
 
 /// Fractional bits of anchors, world arms and 1/r_b (Q10.22).
@@ -111,28 +111,6 @@ fn wide<const K: u32>(a: i32, b: i32) -> i64 {
 #[inline(always)]
 fn scale(x: i64, s: i32) -> i64 {
     (sym(x, RATE_MAX) * i64::from(s) + (1i64 << (FU - 1))) >> FU
-}
-
-/// `x` clamped to ±`bound` (0 ≤ `bound` < 2⁶²): `x.clamp(-bound, bound)`.
-///
-/// Almost no value a joint clamps is ever out of range, so the test is one
-/// add and one unsigned comparison (x + bound ∈ [0, 2·bound] exactly when x
-/// is in range; any other x, wrapped or not, lands at or above 2⁶³ or above
-/// 2·bound) and the clamp a cold call, not a two-`cmov` chain, as `sym` in
-/// the contacts' prepare.
-#[inline(always)]
-fn sym(x: i64, bound: i64) -> i64 {
-    if x.wrapping_add(bound).cast_unsigned() <= bound.cast_unsigned() << 1 {
-        x
-    } else {
-        clamp_cold(x, bound)
-    }
-}
-
-#[cold]
-#[inline(never)]
-fn clamp_cold(x: i64, bound: i64) -> i64 {
-    x.clamp(-bound, bound)
 }
 
 /// Saturated to ±`bound` (< 2³¹) and narrowed.

@@ -37,7 +37,7 @@ use crate::arbiter::{Arbiter, ContactPoint};
 use crate::body::Body;
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::Vector2;
-use crate::solver::lanes::{self, ARM_MAX, BLOCK_MAX, FM, FR, FS, FU, GAMMA_MAX, PHI_MAX};
+use crate::solver::lanes::{self, sym, ARM_MAX, BLOCK_MAX, FM, FR, FS, FU, GAMMA_MAX, PHI_MAX};
 use crate::solver::SolverBody;
 
 use super::f;
@@ -112,35 +112,6 @@ fn arm_saturated(hi: i64) -> i64 {
     } else {
         ARM
     }
-}
-
-/// `x` clamped to ±`bound` (`bound ≥ 0`): `x.clamp(-bound, bound)`.
-///
-/// Prepare clamps some fifty values an arbiter and almost none of them is
-/// ever out of range, so the test is one add and one unsigned comparison
-/// (x + bound ∈ [0, 2·bound] exactly when x is in range; any other x, wrapped
-/// or not, lands at or above 2⁶³ or above 2·bound) and the clamp a cold call,
-/// not a two-`cmov` chain (with [`inverse`] inlined by hand, the large
-/// scene's 20 steps: 2,577.2 → 2,542.5 M instructions).
-#[inline(always)]
-fn sym(x: i64, bound: i64) -> i64 {
-    // From 2⁶² on, x + bound of an x below −bound can wrap to at most 2·bound
-    // and pass the test: such bounds take the plain clamp. Every caller's
-    // bound is a constant, so the branch folds away.
-    if bound >= 1 << 62 {
-        return x.clamp(-bound, bound);
-    }
-    if x.wrapping_add(bound).cast_unsigned() <= bound.cast_unsigned() << 1 {
-        x
-    } else {
-        clamp_cold(x, bound)
-    }
-}
-
-#[cold]
-#[inline(never)]
-fn clamp_cold(x: i64, bound: i64) -> i64 {
-    x.clamp(-bound, bound)
 }
 
 /// `x` of a wide value clamped to ±`bound` (`bound ≥ 0`), as [`sym`]: below
