@@ -67,6 +67,8 @@ pub struct SolverBody {
     pub(crate) lane_ref: [i32; 3],
     /// Graph colours taken by this body's constraints this step (scratch).
     pub(crate) colours: u32,
+    /// … and by its pivots in lanes (scratch).
+    pub(crate) joint_colours: u32,
     pub(crate) v: Vector2,
     pub(crate) w: Scalar,
     pub(crate) p: Vector2,
@@ -119,6 +121,7 @@ impl SolverBody {
     pub const EMPTY: Self = Self {
         lane_ref: [0; 3],
         colours: 0,
+        joint_colours: 0,
         v: Vector2::ZERO,
         w: ZERO,
         p: Vector2::ZERO,
@@ -158,6 +161,7 @@ impl SolverBody {
         let mut sb = Self {
             lane_ref: [0; 3],
             colours: 0,
+            joint_colours: 0,
             v: b.linear_velocity,
             w: b.angular_velocity,
             p: b.position,

@@ -443,6 +443,42 @@ impl<const W: usize> L64<W> {
         }
         L(r)
     }
+    /// Clamped to ±`b` (b ≥ 0).
+    #[inline(always)]
+    pub(crate) fn clamp_abs(self, b: i64) -> Self {
+        let mut r = self.0;
+        for r in r.iter_mut() {
+            *r = (*r).clamp(-b, b);
+        }
+        Self(r)
+    }
+    /// The low 32 bits of each lane (the callers' bounds make it lossless).
+    #[inline(always)]
+    pub(crate) fn narrow(self) -> L<W> {
+        let mut r = [0i32; W];
+        for (r, &a) in r.iter_mut().zip(&self.0) {
+            *r = a as i32;
+        }
+        L(r)
+    }
+    /// Lanes made of low and high words.
+    #[inline(always)]
+    pub(crate) fn join(lo: L<W>, hi: L<W>) -> Self {
+        let mut r = [0i64; W];
+        for ((r, &lo), &hi) in r.iter_mut().zip(&lo.0).zip(&hi.0) {
+            *r = (i64::from(hi) << 32) | i64::from(lo.cast_unsigned());
+        }
+        Self(r)
+    }
+    /// The low and high words of each lane.
+    #[inline(always)]
+    pub(crate) fn split(self) -> (L<W>, L<W>) {
+        let (mut lo, mut hi) = ([0i32; W], [0i32; W]);
+        for ((lo, hi), &a) in lo.iter_mut().zip(hi.iter_mut()).zip(&self.0) {
+            (*lo, *hi) = (a as i32, (a >> 32) as i32);
+        }
+        (L(lo), L(hi))
+    }
     /// Clamped to [0, `hi`] and narrowed.
     #[inline(always)]
     pub(crate) fn clamp_narrow(self, hi: i32) -> L<W> {

@@ -1,0 +1,579 @@
+//! Plain pivots in lanes: the point rows of pivot joints without limits or a
+//! motor, coloured and solved eight at a time.
+//!
+//! A pivot between two bodies whose only row is its point constraint (Box2D's
+//! revolute joint with neither limit nor motor: chains, ragdoll-free grids,
+//! bridges) is the commonest joint, and its row is a 2×2 block like a
+//! two-point contact's. Each step, after the joints' rows are prepared, these
+//! pivots are coloured in joint-slot order as the contacts are (each takes
+//! the lowest of 32 colours that neither of its dynamic bodies has taken; a
+//! static, kinematic or frozen body takes no colour, since the row never
+//! changes its velocity), and a colour's pivots are solved in lanes: eight at
+//! once where the processor has AVX2 ([`dispatch`](super::dispatch)), one at
+//! a time elsewhere, with the same bits, because no two lanes of a colour
+//! share a body the row can move. A pivot that finds no colour, or no room in
+//! the lane store, stays with the other joints, solved one at a time in slot
+//! order.
+//!
+//! **Order.** A joint pass runs the joints one at a time in slot order and
+//! then the colours 0 to 31 (warm start and biased iteration); the relax
+//! iteration runs the colours from 31 down to 0 and then the other joints in
+//! reverse slot order, the exact reverse. The order is a function of the
+//! joints, their bodies and the bodies' types, all in the snapshot.
+//!
+//! **Numbers.** Each lane computes exactly what [`JointLanes`]'s point row
+//! computes for one joint (the same formats, products, roundings and clamps,
+//! written as lane operations, its 64-bit sums in 64-bit lanes), so a pivot
+//! gives the same bits in a lane as one at a time in the same order; the
+//! kernels' unit test holds them to it. What changes with the lanes is only
+//! the order in which the pivots meet.
+//!
+//! **Layout.** Each block holds eight pivots field-major: field `f` of lane
+//! `l` at `[f][l]`, 32 fields of eight `i32` (1 KiB). The store has one
+//! [`PivotLanes`] record (a quarter of a block) per joint slot, so that eight
+//! consecutive records are one block and the store needs no capacity of its
+//! own. Blocks are filled in colour order without padding: a block may hold
+//! the end of one colour and the start of the next, and is then solved in
+//! each with the other's lanes masked, as the contacts' are. The pose pass
+//! (once per sub-step, after the positions are integrated) turns each local
+//! anchor by its body's rotation and measures the position error, as
+//! [`JointLanes::pose`] does, one lane at a time.
+
+use crate::constraint::JointRow;
+
+use super::body::{BodyLanes, SolverBody};
+use super::joint_lanes::{
+    arm_at, position_error, JointLanes, LaneSoft, PointRecord, BIAS_MAX, FD, FH, RATE_MAX,
+};
+use super::lanes::{FQ, FU, FV, L, L64, LAMBDA_MAX, LANES, M, V_WALL};
+use super::Softness;
+
+/// A quarter of a block: the pivot lanes' store holds one per joint slot
+/// (solver scratch; see [`Storage`](crate::Storage)).
+pub type PivotLanes = [[i32; LANES]; 4];
+
+/// Fields of a block.
+const FIELDS: usize = 32;
+/// A block: field-major, eight lanes a field.
+type Block = [[i32; LANES]; FIELDS];
+
+/// The field numbers of a block.
+mod f {
+    /// Body slots of A and B.
+    pub(super) const IA: usize = 0;
+    pub(super) const IB: usize = 1;
+    /// The joint's row in the solver's dense joint array.
+    pub(super) const ROW: usize = 2;
+    /// ρ of A and B (Q2.30).
+    pub(super) const RHO: [usize; 2] = [3, 4];
+    /// κ of A and B (Q5.27).
+    pub(super) const KAPPA: [usize; 2] = [5, 6];
+    /// 1/r_b of A and B (Q10.22).
+    pub(super) const IOTA: [usize; 2] = [7, 8];
+    /// Local anchors of A (x, y) and B (Q10.22).
+    pub(super) const ANCHOR: [[usize; 2]; 2] = [[9, 10], [11, 12]];
+    /// Arms in body radii of A and B (Q12.20).
+    pub(super) const RH: [[usize; 2]; 2] = [[13, 14], [15, 16]];
+    /// ĝ = κ·r̂ of A and B (Q12.20).
+    pub(super) const G: [[usize; 2]; 2] = [[17, 18], [19, 20]];
+    /// M̂: m11, m12, m22 (Q2.30).
+    pub(super) const M11: usize = 21;
+    pub(super) const M12: usize = 22;
+    pub(super) const M22: usize = 23;
+    /// Position error (Q13.19).
+    pub(super) const D: [usize; 2] = [24, 25];
+    /// Accumulated λ̂ (Q16.16).
+    pub(super) const LAMBDA: [usize; 2] = [26, 27];
+    /// λ̂ applied over the step, x and y, each as (low, high) words of an `i64`.
+    pub(super) const SUM: [[usize; 2]; 2] = [[28, 29], [30, 31]];
+}
+
+/// Colours the pivots may take.
+pub(crate) const COLOURS: usize = 32;
+
+/// The pivots in lanes this step: where each colour's lanes are.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct PivotRuns {
+    /// Lanes `ranges[c].0..ranges[c].1` hold colour `c`.
+    pub(crate) ranges: [(u32, u32); COLOURS],
+    /// Lanes in use.
+    pub(crate) count: usize,
+    /// The rows' softness in lane formats (every joint's is the world's).
+    pub(crate) soft: LaneSoft,
+}
+
+impl PivotRuns {
+    pub(crate) const EMPTY: Self = Self {
+        ranges: [(0, 0); COLOURS],
+        count: 0,
+        soft: LaneSoft { rate: 0, mass_scale: 0, impulse_scale: 0 },
+    };
+}
+
+/// Block `b` of the store, if the store holds all of it.
+fn block_mut(store: &mut [PivotLanes], b: usize) -> Option<&mut Block> {
+    let first = b.checked_mul(LANES)?;
+    let records = store.get_mut(first..first.checked_add(LANES)?)?;
+    records.as_flattened_mut().try_into().ok()
+}
+
+/// Lanes the store can hold: whole blocks only.
+pub(crate) fn capacity(store: &[PivotLanes]) -> usize {
+    store.len() / LANES * LANES
+}
+
+/// Colours the plain pivots among `rows` (the step's rows, in joint-slot
+/// order) and writes their lanes in colour order; marks each row with its
+/// colour, or leaves it [`JointRow::NO_LANES`] to be solved one at a time.
+pub(crate) fn build(
+    rows: &mut [JointRow],
+    bodies: &mut [SolverBody],
+    store: &mut [PivotLanes],
+    softness: Softness,
+) -> PivotRuns {
+    let cap = capacity(store);
+    let mut counts = [0u32; COLOURS];
+    let mut total = 0;
+    for row in rows.iter_mut() {
+        row.pivot_colour = JointRow::NO_LANES;
+        if total == cap || row.plain_pivot().and_then(JointLanes::point_record).is_none() {
+            continue;
+        }
+        let [ia, ib] = row.bodies;
+        let Some((a, b)) = super::body::pair_at(bodies, ia, ib) else { continue };
+        let taken = |s: &SolverBody| if s.dynamic { s.joint_colours } else { 0 };
+        let free = !(taken(a) | taken(b));
+        if free == 0 {
+            continue;
+        }
+        let c = free.trailing_zeros();
+        for s in [a, b] {
+            if s.dynamic {
+                s.joint_colours |= 1 << c;
+            }
+        }
+        if let Some(n) = counts.get_mut(c as usize) {
+            *n += 1;
+            total += 1;
+            row.pivot_colour = c as u8;
+        }
+    }
+    let mut runs = PivotRuns { count: total, soft: LaneSoft::new(softness), ..PivotRuns::EMPTY };
+    let mut next = [0u32; COLOURS];
+    let mut start = 0;
+    for ((range, next), &n) in runs.ranges.iter_mut().zip(next.iter_mut()).zip(&counts) {
+        *range = (start, start + n);
+        *next = start;
+        start += n;
+    }
+    for (i, row) in rows.iter().enumerate() {
+        let Some(next) = next.get_mut(usize::from(row.pivot_colour)) else { continue };
+        if let Some(rec) = row.plain_pivot().and_then(JointLanes::point_record) {
+            let [ia, ib] = row.bodies;
+            put(store, *next as usize, i as u32, (ia, ib), &rec);
+            *next += 1;
+        }
+    }
+    runs
+}
+
+/// Writes a pivot's record into lane `lane`; `row` is its row in the dense
+/// joint array, `ia`, `ib` its bodies' slots.
+pub(crate) fn put(store: &mut [PivotLanes], lane: usize, row: u32, (ia, ib): (u32, u32), r: &PointRecord) {
+    let Some(blk) = block_mut(store, lane / LANES) else { return };
+    let l = lane % LANES;
+    let mut set = |fi: usize, x: i32| {
+        if let Some(field) = blk.get_mut(fi) {
+            field[l] = x;
+        }
+    };
+    set(f::IA, ia as i32);
+    set(f::IB, ib as i32);
+    set(f::ROW, row as i32);
+    for s in 0..2 {
+        set(f::RHO[s], r.rho[s]);
+        set(f::KAPPA[s], r.kappa[s]);
+        set(f::IOTA[s], r.iota[s]);
+        for k in 0..2 {
+            set(f::ANCHOR[s][k], r.anchor[s][k]);
+            set(f::RH[s][k], r.rh[s][k]);
+            set(f::G[s][k], r.g[s][k]);
+            set(f::SUM[s][k], 0);
+        }
+        set(f::D[s], r.d[s]);
+        set(f::LAMBDA[s], r.lambda[s]);
+    }
+    set(f::M11, r.m[0]);
+    set(f::M12, r.m[1]);
+    set(f::M22, r.m[2]);
+}
+
+/// Field `fi` of lane `l` (0 out of range).
+#[inline(always)]
+fn get(blk: &Block, fi: usize, l: usize) -> i32 {
+    blk.get(fi).and_then(|x| x.get(l)).copied().unwrap_or(0)
+}
+
+/// The pose pass: each pivot's arms and position error at its bodies'
+/// current pose ([`JointLanes::pose`]'s values), one lane at a time.
+pub(crate) fn pose(store: &mut [PivotLanes], count: usize, bodies: &[SolverBody]) {
+    for b in 0..count.div_ceil(LANES) {
+        let Some(blk) = block_mut(store, b) else { return };
+        for l in 0..(count - b * LANES).min(LANES) {
+            let body = |fi: usize| bodies.get(get(blk, fi, l) as u32 as usize);
+            let (Some(sa), Some(sb)) = (body(f::IA), body(f::IB)) else { continue };
+            let mut r = [[0; 2]; 2];
+            for (s, q) in [sa.q, sb.q].into_iter().enumerate() {
+                let anchor = [get(blk, f::ANCHOR[s][0], l), get(blk, f::ANCHOR[s][1], l)];
+                let [arm, rh, g] = arm_at(anchor, get(blk, f::IOTA[s], l), get(blk, f::KAPPA[s], l), q);
+                r[s] = arm;
+                for k in 0..2 {
+                    blk[f::RH[s][k]][l] = rh[k];
+                    blk[f::G[s][k]][l] = g[k];
+                }
+            }
+            let d = position_error(sa.p, sb.p, crate::math::Vector2::ZERO, r[0], r[1]);
+            blk[f::D[0]][l] = d[0];
+            blk[f::D[1]][l] = d[1];
+        }
+    }
+}
+
+/// At the end of the step: each pivot's λ̂ and the λ̂ it applied, back into
+/// its row of `rows`.
+pub(crate) fn finish(store: &mut [PivotLanes], count: usize, rows: &mut [JointRow]) {
+    for b in 0..count.div_ceil(LANES) {
+        let Some(blk) = block_mut(store, b) else { return };
+        for l in 0..(count - b * LANES).min(LANES) {
+            let sum = |s: usize| join(get(blk, f::SUM[s][0], l), get(blk, f::SUM[s][1], l));
+            let row = rows.get_mut(get(blk, f::ROW, l) as u32 as usize);
+            if let Some(j) = row.and_then(JointRow::lanes_mut) {
+                j.set_point([get(blk, f::LAMBDA[0], l), get(blk, f::LAMBDA[1], l)], [sum(0), sum(1)]);
+            }
+        }
+    }
+}
+
+/// An `i64` from its low and high words.
+#[inline(always)]
+fn join(lo: i32, hi: i32) -> i64 {
+    (i64::from(hi) << 32) | i64::from(lo as u32)
+}
+
+/// Which pass a kernel runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Pass {
+    /// The accumulated λ̂ applied again.
+    Warm,
+    /// One iteration, soft and biased.
+    Biased,
+    /// One iteration, rigid and unbiased (the relax sweep); also sums the
+    /// λ̂ each pivot ends the sub-step with.
+    Relax,
+}
+
+/// Lanes `base..base + W` of a block.
+struct View<'b, const W: usize> {
+    blk: &'b mut Block,
+    base: usize,
+}
+
+impl<const W: usize> View<'_, W> {
+    #[inline(always)]
+    fn ld(&self, fi: usize) -> L<W> {
+        let mut r = [0; W];
+        for (i, x) in r.iter_mut().enumerate() {
+            *x = get(self.blk, fi, self.base + i);
+        }
+        L(r)
+    }
+
+    /// Stores the lanes of `x` that `m` selects.
+    #[inline(always)]
+    fn st(&mut self, fi: usize, x: L<W>, m: M<W>) {
+        let x = self.ld(fi).select(m, x);
+        if let Some(row) = self.blk.get_mut(fi) {
+            for (i, &x) in x.0.iter().enumerate() {
+                row[(self.base + i) % LANES] = x;
+            }
+        }
+    }
+}
+
+/// One body side's change from a point impulse `p` (velocity units),
+/// negated for A: [`JointLanes`]'s `Side::apply_point`, lane by lane.
+#[inline(always)]
+fn apply_side<const W: usize, const NEG: bool>(v: &mut [L<W>; 3], rho: L<W>, g: [L<W>; 2], p: [L<W>; 2]) {
+    let (mut dx, mut dy) = (rho.mul::<FU>(p[0]), rho.mul::<FU>(p[1]));
+    let mut dw = L64::mul_shift::<FH>(g[0], p[1]).sub(L64::mul_shift::<FH>(g[1], p[0]));
+    if NEG {
+        (dx, dy, dw) = (dx.neg(), dy.neg(), dw.neg());
+    }
+    // |ρ·p| ≤ 2³⁰ and |v| ≤ the wall (2²⁷): the `i32` sums cannot wrap.
+    v[0] = v[0].add(dx).clamp_abs(V_WALL);
+    v[1] = v[1].add(dy).clamp_abs(V_WALL);
+    v[2] = L64::from(v[2]).add(dw).clamp_abs(i64::from(V_WALL)).narrow();
+}
+
+/// The velocity of an anchor at arm `r` (body radii): v + ŵ·perp(r̂), 64-bit.
+#[inline(always)]
+fn anchor_velocity<const W: usize>(vel: &[L<W>; 3], r: [L<W>; 2]) -> [L64<W>; 2] {
+    [
+        L64::from(vel[0]).sub(L64::mul_shift::<FH>(vel[2], r[1])),
+        L64::from(vel[1]).add(L64::mul_shift::<FH>(vel[2], r[0])),
+    ]
+}
+
+/// Fields `x`, `y` of a view.
+#[inline(always)]
+fn pair<const W: usize>(v: &View<'_, W>, [x, y]: [usize; 2]) -> [L<W>; 2] {
+    [v.ld(x), v.ld(y)]
+}
+
+/// One iteration of the point row (biased or relax) on lanes `m`: the new
+/// λ̂ stored, and the impulse to apply (new − old) returned.
+#[inline(always)]
+fn iterate<const W: usize>(
+    v: &mut View<'_, W>,
+    m: M<W>,
+    relax: bool,
+    soft: &LaneSoft,
+    (va, vb): (&[L<W>; 3], &[L<W>; 3]),
+    old: [L<W>; 2],
+) -> [L<W>; 2] {
+    let (aa, ab) = (anchor_velocity(va, pair(v, f::RH[0])), anchor_velocity(vb, pair(v, f::RH[1])));
+    let mut u = [L::splat(0); 2];
+    for k in 0..2 {
+        let mut rate = ab[k].sub(aa[k]);
+        if !relax {
+            let d = v.ld(f::D[k]);
+            rate = rate.add(L64::mul_shift::<{ FD + FQ - FV }>(d, L::splat(soft.rate)).clamp_abs(BIAS_MAX));
+        }
+        u[k] = rate.clamp_abs(RATE_MAX).narrow();
+    }
+    let (m11, m12, m22) = (v.ld(f::M11), v.ld(f::M12), v.ld(f::M22));
+    let mu = [
+        L64::mul_shift::<FU>(m11, u[0]).add(L64::mul_shift::<FU>(m12, u[1])),
+        L64::mul_shift::<FU>(m12, u[0]).add(L64::mul_shift::<FU>(m22, u[1])),
+    ];
+    let mut applied = [L::splat(0); 2];
+    for k in 0..2 {
+        let mu = mu[k].clamp_abs(RATE_MAX).narrow();
+        let delta = if relax {
+            // Rigid: s_m = 1, s_i = 0.
+            L64::from(mu).neg()
+        } else {
+            // −s_m·μ − s_i·λ̂.
+            L64::mul_shift::<FU>(mu, L::splat(soft.mass_scale))
+                .neg()
+                .sub(L64::mul_shift::<FU>(L::splat(soft.impulse_scale), old[k]))
+        };
+        let new = L64::from(old[k]).add(delta).clamp_abs(i64::from(LAMBDA_MAX)).narrow();
+        v.st(f::LAMBDA[k], new, m);
+        if relax {
+            let [lo, hi] = f::SUM[k];
+            let (lo_new, hi_new) = L64::join(v.ld(lo), v.ld(hi)).add(L64::from(new)).split();
+            v.st(lo, lo_new, m);
+            v.st(hi, hi_new, m);
+        }
+        applied[k] = new.sub(old[k]);
+    }
+    applied
+}
+
+/// Runs `pass` on lanes `m` of view `v`.
+#[inline(always)]
+fn kernel<const W: usize>(
+    v: &mut View<'_, W>,
+    m: M<W>,
+    pass: Pass,
+    soft: &LaneSoft,
+    bodies: &mut [BodyLanes],
+) {
+    let (ia, ib) = (v.ld(f::IA), v.ld(f::IB));
+    let (mut va, _) = super::contact::gather(bodies, ia);
+    let (mut vb, _) = super::contact::gather(bodies, ib);
+    let old = pair(v, f::LAMBDA);
+    let p = match pass {
+        Pass::Warm => old,
+        Pass::Biased => iterate(v, m, false, soft, (&va, &vb), old),
+        Pass::Relax => iterate(v, m, true, soft, (&va, &vb), old),
+    };
+    apply_side::<W, true>(&mut va, v.ld(f::RHO[0]), pair(v, f::G[0]), p);
+    apply_side::<W, false>(&mut vb, v.ld(f::RHO[1]), pair(v, f::G[1]), p);
+    super::contact::scatter(bodies, ia, &va, m);
+    super::contact::scatter(bodies, ib, &vb, m);
+}
+
+impl super::Solver<'_> {
+    /// Runs `pass` over the pivots in lanes: colours 0 to 31, or 31 down to
+    /// 0 for the relax pass. `WIDE` solves eight lanes of a block at once;
+    /// otherwise one lane at a time (the same bits). Inlined into
+    /// `dispatch`'s AVX2 function, like the contacts' runs.
+    #[inline(always)]
+    pub(crate) fn pivot_runs<const WIDE: bool>(&mut self, pass: Pass) {
+        // Plain loops, no closure: a closure would be compiled apart from
+        // the AVX2 function this is inlined into, without AVX2.
+        let ranges = self.pivot_runs.ranges;
+        let soft = self.pivot_runs.soft;
+        let store: &mut [PivotLanes] = &mut self.pivots;
+        let bodies: &mut [BodyLanes] = &mut self.lanes;
+        for k in 0..COLOURS {
+            let c = if pass == Pass::Relax { COLOURS - 1 - k } else { k };
+            let Some(&(start, end)) = ranges.get(c) else { continue };
+            let (start, end) = (start as usize, end as usize);
+            for b in start / LANES..end.div_ceil(LANES) {
+                let Some(blk) = block_mut(store, b) else { break };
+                let first = b * LANES;
+                let (lo, hi) = (start.max(first) - first, end.min(first + LANES) - first);
+                if WIDE {
+                    let mut m = [0; LANES];
+                    for (i, x) in m.iter_mut().enumerate() {
+                        *x = -i32::from(i >= lo && i < hi);
+                    }
+                    kernel::<LANES>(&mut View { blk, base: 0 }, M(m), pass, &soft, bodies);
+                } else {
+                    for l in lo..hi {
+                        kernel::<1>(&mut View { blk: &mut *blk, base: l }, M::all(), pass, &soft, bodies);
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solver::joint_lanes::{ARM_HAT_MAX, D_MAX, G_MAX};
+    use crate::solver::{xorshift, Bias};
+
+    /// A value in [lo, hi]; one round in eight takes an end.
+    fn range(seed: &mut u64, lo: i64, hi: i64) -> i32 {
+        let r = xorshift(seed);
+        match r % 16 {
+            0 => lo as i32,
+            1 => hi as i32,
+            _ => (lo + ((r >> 8) % (hi - lo + 1).unsigned_abs()) as i64) as i32,
+        }
+    }
+
+    /// A random pivot: lane `l` joins bodies 2l and 2l + 1, or the static
+    /// body 16 (ρ = 0, ĝ = 0 on that side) and 2l + 1.
+    fn record(seed: &mut u64, static_a: bool) -> PointRecord {
+        let u = 1i64 << FU;
+        let side = |seed: &mut u64, fixed: bool| {
+            let arm = ARM_HAT_MAX << FH;
+            let g = G_MAX << FH;
+            let rho = if fixed { 0 } else { range(seed, 0, u) };
+            let rh = [range(seed, -arm, arm), range(seed, -arm, arm)];
+            let gg = if fixed { [0; 2] } else { [range(seed, -g, g), range(seed, -g, g)] };
+            (rho, rh, gg)
+        };
+        let (ra, rha, ga) = side(seed, static_a);
+        let (rb, rhb, gb) = side(seed, false);
+        let d = D_MAX << FD;
+        let lam = i64::from(LAMBDA_MAX);
+        PointRecord {
+            rho: [ra, rb],
+            kappa: [0; 2],
+            iota: [0; 2],
+            anchor: [[0; 2]; 2],
+            rh: [rha, rhb],
+            g: [ga, gb],
+            m: [range(seed, 0, u), range(seed, -u, u), range(seed, 0, u)],
+            d: [range(seed, -d, d), range(seed, -d, d)],
+            lambda: [range(seed, -lam, lam), range(seed, -lam, lam)],
+        }
+    }
+
+    /// Each pass gives the same bits on eight lanes at once (any mask) as on
+    /// each active lane alone, and both the same as [`JointLanes`]'s point
+    /// row one joint at a time (its warm start, biased and relax
+    /// iterations, and the λ̂ it sums), on random and extreme inputs.
+    #[test]
+    fn lanes_equal_the_point_row_one_at_a_time() {
+        let wide = {
+            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            {
+                std::arch::is_x86_feature_detected!("avx2")
+            }
+            #[cfg(not(all(feature = "std", target_arch = "x86_64")))]
+            {
+                false
+            }
+        };
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut moved = 0;
+        for round in 0..4_000 {
+            let soft = LaneSoft {
+                rate: range(&mut seed, 0, 1 << 21),
+                mass_scale: range(&mut seed, 0, 1 << FU),
+                impulse_scale: range(&mut seed, 0, 1 << FU),
+            };
+            let mut store = [[[0; LANES]; 4]; LANES];
+            let mut recs = [record(&mut seed, false); LANES];
+            for (l, rec) in recs.iter_mut().enumerate() {
+                let fixed = round % 3 == 0 && l % 3 == 0;
+                *rec = record(&mut seed, fixed);
+                let ia = if fixed { 16 } else { 2 * l as u32 };
+                put(&mut store, l, l as u32, (ia, 2 * l as u32 + 1), rec);
+            }
+            let wall = i64::from(V_WALL);
+            let mut bodies = [BodyLanes::EMPTY; 17];
+            for b in bodies.iter_mut() {
+                for k in 0..3 {
+                    b.0[k] = range(&mut seed, -wall, wall);
+                }
+            }
+            let mut active = M::<LANES>::none();
+            for (j, a) in active.0.iter_mut().enumerate() {
+                *a = -i32::from(round % 4 == 0 || (xorshift(&mut seed) >> j) & 1 == 1);
+            }
+            let start = bodies;
+            let (mut s1, mut b1) = (store, bodies);
+            let (mut s8, mut b8) = (store, bodies);
+            let mut joints = recs.map(|r| JointLanes::from_point_record(&r, soft));
+            let mut bref = bodies;
+            for pass in [Pass::Warm, Pass::Biased, Pass::Relax] {
+                if let Some(blk) = block_mut(&mut s1, 0) {
+                    for l in (0..LANES).filter(|&l| active.is(l)) {
+                        kernel::<1>(&mut View { blk: &mut *blk, base: l }, M::all(), pass, &soft, &mut b1);
+                    }
+                }
+                if wide {
+                    if let Some(blk) = block_mut(&mut s8, 0) {
+                        kernel::<LANES>(&mut View { blk, base: 0 }, active, pass, &soft, &mut b8);
+                    }
+                }
+                for (l, j) in joints.iter_mut().enumerate().filter(|&(l, _)| active.is(l)) {
+                    let ia = if round % 3 == 0 && l % 3 == 0 { 16 } else { 2 * l as u32 };
+                    let Some((la, lb)) = super::super::body::pair_at(&mut bref, ia, 2 * l as u32 + 1) else {
+                        continue;
+                    };
+                    match pass {
+                        Pass::Warm => j.warm_point(la, lb),
+                        Pass::Biased => j.solve_point(la, lb, Bias::On),
+                        Pass::Relax => j.solve_point(la, lb, Bias::Off),
+                    }
+                }
+            }
+            assert_eq!(b1, bref, "round {round}: one lane at a time against the point row");
+            if wide {
+                assert_eq!(s8, s1, "round {round}: eight lanes against one");
+                assert_eq!(b8, b1, "round {round}: bodies, eight lanes against one");
+            }
+            let blk = block_mut(&mut s1, 0).map(|b| *b).unwrap_or([[0; LANES]; FIELDS]);
+            for (l, j) in joints.iter().enumerate().filter(|&(l, _)| active.is(l)) {
+                let (lambda, sum) = j.point_state();
+                assert_eq!([blk[f::LAMBDA[0]][l], blk[f::LAMBDA[1]][l]], lambda, "round {round} lane {l}: λ̂");
+                let summed = |s: usize| join(blk[f::SUM[s][0]][l], blk[f::SUM[s][1]][l]);
+                assert_eq!([summed(0), summed(1)], sum, "round {round} lane {l}: λ̂ summed");
+            }
+            moved += usize::from(b1 != start);
+        }
+        // The passes move bodies in nearly every round: the comparison is
+        // not of no-ops.
+        assert!(moved > 3_900, "{moved} of 4,000 rounds moved a body");
+    }
+}
