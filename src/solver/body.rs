@@ -28,6 +28,9 @@ pub(crate) const DPY: usize = 5;
 /// Non-zero when a contact's deep push-out moved the body (changed its
 /// motion lanes) since the last integration.
 pub(crate) const MOVED: usize = 6;
+/// The colours this body's pivots in lanes took this step (a bit mask; see
+/// `pivot_lanes`): the record's spare field, which the kernels never read.
+pub(crate) const PIVOT_COLOURS: usize = 7;
 
 /// The smallest body radius the solver uses for rim speeds (m): keeps
 /// 1/r_b within its format for the tiniest shapes.
@@ -67,8 +70,6 @@ pub struct SolverBody {
     pub(crate) lane_ref: [i32; 3],
     /// Graph colours taken by this body's constraints this step (scratch).
     pub(crate) colours: u32,
-    /// … and by its pivots in lanes (scratch).
-    pub(crate) joint_colours: u32,
     pub(crate) v: Vector2,
     pub(crate) w: Scalar,
     pub(crate) p: Vector2,
@@ -121,7 +122,6 @@ impl SolverBody {
     pub const EMPTY: Self = Self {
         lane_ref: [0; 3],
         colours: 0,
-        joint_colours: 0,
         v: Vector2::ZERO,
         w: ZERO,
         p: Vector2::ZERO,
@@ -161,7 +161,6 @@ impl SolverBody {
         let mut sb = Self {
             lane_ref: [0; 3],
             colours: 0,
-            joint_colours: 0,
             v: b.linear_velocity,
             w: b.angular_velocity,
             p: b.position,

@@ -919,6 +919,13 @@ impl JointLanes {
         j
     }
 
+    /// The arms in body radii, ĝ and the position error (tests).
+    #[cfg(test)]
+    pub(super) fn pose_state(&self) -> ([[i32; 2]; 2], [[i32; 2]; 2], [i32; 2]) {
+        let [a, b] = &self.side;
+        ([a.rh, b.rh], [a.g, b.g], self.d)
+    }
+
     /// The accumulated λ̂ and the λ̂ applied this step, summed (tests).
     #[cfg(test)]
     pub(super) fn point_state(&self) -> ([i32; 2], [i64; 2]) {

@@ -461,6 +461,59 @@ impl<const W: usize> L64<W> {
         }
         L(r)
     }
+    /// `x >> k` (arithmetic; `k` < 64, a constant where inlined).
+    #[inline(always)]
+    pub(crate) fn shr(self, k: u32) -> Self {
+        let mut r = self.0;
+        for r in r.iter_mut() {
+            *r >>= k % 64;
+        }
+        Self(r)
+    }
+    /// `x << k` (bits shifted out are lost; `k` < 64).
+    #[inline(always)]
+    pub(crate) fn shl(self, k: u32) -> Self {
+        let mut r = self.0;
+        for r in r.iter_mut() {
+            *r <<= k % 64;
+        }
+        Self(r)
+    }
+    /// Bitwise and with `b`.
+    #[inline(always)]
+    pub(crate) fn and(self, b: i64) -> Self {
+        let mut r = self.0;
+        for r in r.iter_mut() {
+            *r &= b;
+        }
+        Self(r)
+    }
+    /// The saturating sum (`i64::saturating_add`), without a branch.
+    #[inline(always)]
+    pub(crate) fn saturating_add(self, o: Self) -> Self {
+        let mut r = self.0;
+        for (r, &b) in r.iter_mut().zip(&o.0) {
+            let a = *r;
+            let s = a.wrapping_add(b);
+            // Overflow: both operands of one sign and the sum of the other;
+            // then the bound of a's sign.
+            let over = ((a ^ s) & (b ^ s)) < 0;
+            *r = if over { (a >> 63) ^ i64::MAX } else { s };
+        }
+        Self(r)
+    }
+    /// The saturating difference (`i64::saturating_sub`), without a branch.
+    #[inline(always)]
+    pub(crate) fn saturating_sub(self, o: Self) -> Self {
+        let mut r = self.0;
+        for (r, &b) in r.iter_mut().zip(&o.0) {
+            let a = *r;
+            let s = a.wrapping_sub(b);
+            let over = ((a ^ b) & (a ^ s)) < 0;
+            *r = if over { (a >> 63) ^ i64::MAX } else { s };
+        }
+        Self(r)
+    }
     /// Lanes made of low and high words.
     #[inline(always)]
     pub(crate) fn join(lo: L<W>, hi: L<W>) -> Self {

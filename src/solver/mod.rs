@@ -212,7 +212,7 @@ pub(crate) fn solve(
         // pivot lanes' colours from the last, then the other joints in
         // reverse slot order.
         if solver.pivot_runs.count > 0 {
-            pivot_lanes::pose(&mut solver.pivots, solver.pivot_runs.count, &solver.bodies);
+            dispatch::run_pivots(solver, Pass::Pose);
             dispatch::run_pivots(solver, Pass::Relax);
         }
         for_each_joint(solver, Sweep::Reverse, |j, a, b| j.solve(a, b, h, Bias::Off));
@@ -322,6 +322,9 @@ fn for_each_joint(
     let lanes: &mut [BodyLanes] = &mut solver.lanes;
     let rows: &mut [JointRow] = &mut solver.joints;
     let rows = rows.get_mut(..solver.joint_count).unwrap_or_default();
+    if solver.pivot_runs.one_at_a_time == 0 {
+        return;
+    }
     let mut visit = |row: &mut JointRow| {
         if row.pivot_colour != JointRow::NO_LANES {
             return;
@@ -357,7 +360,9 @@ fn prepare_joints(
     let ground = crate::constraint::ground();
     let sground = SolverBody::EMPTY;
     let sbodies: &[SolverBody] = &solver.bodies;
+    let lanes: &mut [BodyLanes] = &mut solver.lanes;
     let rows: &mut [JointRow] = &mut solver.joints;
+    let mut colouring = pivot_lanes::Colouring::new(&solver.pivots);
     let mut count = 0;
     for (i, j) in joints.iter_mut() {
         let b = j.def.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
@@ -369,19 +374,16 @@ fn prepare_joints(
         match (a, sa, rows.get_mut(count)) {
             (Some(a), Some(sa), Some(row)) => {
                 j.prepare(row, i.index(), a, b, sa, sb, ctx.joint_softness, ctx.h, ctx.inv_h);
+                colouring.colour(row, lanes);
                 count += 1;
             }
             _ => j.deactivate(),
         }
     }
     solver.joint_count = count;
-    let rows: &mut [JointRow] = &mut solver.joints;
-    solver.pivot_runs = pivot_lanes::build(
-        rows.get_mut(..count).unwrap_or_default(),
-        &mut solver.bodies,
-        &mut solver.pivots,
-        ctx.joint_softness,
-    );
+    let rows: &[JointRow] = &solver.joints;
+    let rows = rows.get(..count).unwrap_or_default();
+    solver.pivot_runs = colouring.fill(rows, &mut solver.pivots, ctx.joint_softness);
     // A dormant game constraint (a body of it removed) is skipped.
     for (_, c) in constraints.iter_mut() {
         let b = match c.body_b {

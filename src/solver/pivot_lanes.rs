@@ -41,9 +41,9 @@
 
 use crate::constraint::JointRow;
 
-use super::body::{BodyLanes, SolverBody};
+use super::body::{BodyLanes, SolverBody, PIVOT_COLOURS};
 use super::joint_lanes::{
-    arm_at, position_error, JointLanes, LaneSoft, PointRecord, BIAS_MAX, FD, FH, RATE_MAX,
+    JointLanes, LaneSoft, PointRecord, ARM_HAT_MAX, BIAS_MAX, D_MAX, FA, FD, FH, FK, G_MAX, RATE_MAX,
 };
 use super::lanes::{FQ, FU, FV, L, L64, LAMBDA_MAX, LANES, M, V_WALL};
 use super::Softness;
@@ -98,6 +98,8 @@ pub(crate) struct PivotRuns {
     pub(crate) ranges: [(u32, u32); COLOURS],
     /// Lanes in use.
     pub(crate) count: usize,
+    /// Rows solved one at a time (none: the joint passes skip the rows).
+    pub(crate) one_at_a_time: usize,
     /// The rows' softness in lane formats (every joint's is the world's).
     pub(crate) soft: LaneSoft,
 }
@@ -106,6 +108,7 @@ impl PivotRuns {
     pub(crate) const EMPTY: Self = Self {
         ranges: [(0, 0); COLOURS],
         count: 0,
+        one_at_a_time: 0,
         soft: LaneSoft { rate: 0, mass_scale: 0, impulse_scale: 0 },
     };
 }
@@ -122,59 +125,74 @@ pub(crate) fn capacity(store: &[PivotLanes]) -> usize {
     store.len() / LANES * LANES
 }
 
-/// Colours the plain pivots among `rows` (the step's rows, in joint-slot
-/// order) and writes their lanes in colour order; marks each row with its
-/// colour, or leaves it [`JointRow::NO_LANES`] to be solved one at a time.
-pub(crate) fn build(
-    rows: &mut [JointRow],
-    bodies: &mut [SolverBody],
-    store: &mut [PivotLanes],
-    softness: Softness,
-) -> PivotRuns {
-    let cap = capacity(store);
-    let mut counts = [0u32; COLOURS];
-    let mut total = 0;
-    for row in rows.iter_mut() {
+/// The colouring's running state over a step's rows.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Colouring {
+    counts: [u32; COLOURS],
+    total: usize,
+    capacity: usize,
+}
+
+impl Colouring {
+    /// Colouring into a store of `store`'s size.
+    pub(crate) fn new(store: &[PivotLanes]) -> Self {
+        Self { counts: [0; COLOURS], total: 0, capacity: capacity(store) }
+    }
+
+    /// Gives `row` (just prepared, in joint-slot order) its colour if it is a
+    /// plain pivot and one is free for both its bodies (a body's colours are
+    /// its lane record's field [`PIVOT_COLOURS`], cleared each step when the
+    /// body is loaded), or leaves it [`JointRow::NO_LANES`]. A body the row
+    /// cannot move (ρ = κ = 0: not dynamic) takes no colour: its lanes are
+    /// written back unchanged.
+    #[inline]
+    pub(crate) fn colour(&mut self, row: &mut JointRow, bodies: &mut [BodyLanes]) {
         row.pivot_colour = JointRow::NO_LANES;
-        if total == cap || row.plain_pivot().and_then(JointLanes::point_record).is_none() {
-            continue;
+        if self.total == self.capacity {
+            return;
         }
+        let Some(rec) = row.plain_pivot().and_then(JointLanes::point_record) else { return };
         let [ia, ib] = row.bodies;
-        let Some((a, b)) = super::body::pair_at(bodies, ia, ib) else { continue };
-        let taken = |s: &SolverBody| if s.dynamic { s.joint_colours } else { 0 };
-        let free = !(taken(a) | taken(b));
-        if free == 0 {
-            continue;
-        }
+        let Some((a, b)) = super::body::pair_at(bodies, ia, ib) else { return };
+        let (a, b) = (&mut a.0[PIVOT_COLOURS], &mut b.0[PIVOT_COLOURS]);
+        let moves = [rec.rho[0] | rec.kappa[0] != 0, rec.rho[1] | rec.kappa[1] != 0];
+        let taken = |x: i32, moves: bool| if moves { x.cast_unsigned() } else { 0 };
+        let free = !(taken(*a, moves[0]) | taken(*b, moves[1]));
         let c = free.trailing_zeros();
-        for s in [a, b] {
-            if s.dynamic {
-                s.joint_colours |= 1 << c;
+        let Some(n) = self.counts.get_mut(c as usize) else { return };
+        for (x, moves) in [(a, moves[0]), (b, moves[1])] {
+            if moves {
+                *x |= 1 << c;
             }
         }
-        if let Some(n) = counts.get_mut(c as usize) {
-            *n += 1;
-            total += 1;
-            row.pivot_colour = c as u8;
+        *n += 1;
+        self.total += 1;
+        row.pivot_colour = c as u8;
+    }
+
+    /// Writes the coloured rows' lanes in colour order; returns where each
+    /// colour is.
+    pub(crate) fn fill(&self, rows: &[JointRow], store: &mut [PivotLanes], softness: Softness) -> PivotRuns {
+        let mut runs = PivotRuns { count: self.total, soft: LaneSoft::new(softness), ..PivotRuns::EMPTY };
+        let mut next = [0u32; COLOURS];
+        let mut start = 0;
+        for ((range, next), &n) in runs.ranges.iter_mut().zip(next.iter_mut()).zip(&self.counts) {
+            *range = (start, start + n);
+            *next = start;
+            start += n;
         }
-    }
-    let mut runs = PivotRuns { count: total, soft: LaneSoft::new(softness), ..PivotRuns::EMPTY };
-    let mut next = [0u32; COLOURS];
-    let mut start = 0;
-    for ((range, next), &n) in runs.ranges.iter_mut().zip(next.iter_mut()).zip(&counts) {
-        *range = (start, start + n);
-        *next = start;
-        start += n;
-    }
-    for (i, row) in rows.iter().enumerate() {
-        let Some(next) = next.get_mut(usize::from(row.pivot_colour)) else { continue };
-        if let Some(rec) = row.plain_pivot().and_then(JointLanes::point_record) {
-            let [ia, ib] = row.bodies;
-            put(store, *next as usize, i as u32, (ia, ib), &rec);
-            *next += 1;
+        for (i, row) in rows.iter().enumerate() {
+            let Some(next) = next.get_mut(usize::from(row.pivot_colour)) else {
+                runs.one_at_a_time += 1;
+                continue;
+            };
+            if let Some(rec) = row.plain_pivot().and_then(JointLanes::point_record) {
+                put(store, *next as usize, i as u32, (row.bodies[0], row.bodies[1]), &rec);
+                *next += 1;
+            }
         }
+        runs
     }
-    runs
 }
 
 /// Writes a pivot's record into lane `lane`; `row` is its row in the dense
@@ -214,31 +232,6 @@ fn get(blk: &Block, fi: usize, l: usize) -> i32 {
     blk.get(fi).and_then(|x| x.get(l)).copied().unwrap_or(0)
 }
 
-/// The pose pass: each pivot's arms and position error at its bodies'
-/// current pose ([`JointLanes::pose`]'s values), one lane at a time.
-pub(crate) fn pose(store: &mut [PivotLanes], count: usize, bodies: &[SolverBody]) {
-    for b in 0..count.div_ceil(LANES) {
-        let Some(blk) = block_mut(store, b) else { return };
-        for l in 0..(count - b * LANES).min(LANES) {
-            let body = |fi: usize| bodies.get(get(blk, fi, l) as u32 as usize);
-            let (Some(sa), Some(sb)) = (body(f::IA), body(f::IB)) else { continue };
-            let mut r = [[0; 2]; 2];
-            for (s, q) in [sa.q, sb.q].into_iter().enumerate() {
-                let anchor = [get(blk, f::ANCHOR[s][0], l), get(blk, f::ANCHOR[s][1], l)];
-                let [arm, rh, g] = arm_at(anchor, get(blk, f::IOTA[s], l), get(blk, f::KAPPA[s], l), q);
-                r[s] = arm;
-                for k in 0..2 {
-                    blk[f::RH[s][k]][l] = rh[k];
-                    blk[f::G[s][k]][l] = g[k];
-                }
-            }
-            let d = position_error(sa.p, sb.p, crate::math::Vector2::ZERO, r[0], r[1]);
-            blk[f::D[0]][l] = d[0];
-            blk[f::D[1]][l] = d[1];
-        }
-    }
-}
-
 /// At the end of the step: each pivot's λ̂ and the λ̂ it applied, back into
 /// its row of `rows`.
 pub(crate) fn finish(store: &mut [PivotLanes], count: usize, rows: &mut [JointRow]) {
@@ -263,6 +256,9 @@ fn join(lo: i32, hi: i32) -> i64 {
 /// Which pass a kernel runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Pass {
+    /// The arms and position error at the bodies' current pose (once a
+    /// sub-step, after the positions are integrated).
+    Pose,
     /// The accumulated λ̂ applied again.
     Warm,
     /// One iteration, soft and biased.
@@ -381,6 +377,63 @@ fn iterate<const W: usize>(
     applied
 }
 
+/// A `Scalar`'s bits to `F` fractional bits, rounded half up, clamped to
+/// ±`bound` ([`lanes::from_scalar`](super::lanes::from_scalar)).
+#[inline(always)]
+fn round<const W: usize, const F: u32>(x: L64<W>, bound: i64) -> L<W> {
+    let down = x.shr(32 - F);
+    let half = x.shr(31 - F).and(1);
+    down.add(half).clamp_abs(bound).narrow()
+}
+
+/// A body's pose as the pose pass reads it: cos, sin of its rotation and
+/// its position, each a `Scalar`'s bits.
+#[inline(always)]
+fn body_pose<const W: usize>(bodies: &[SolverBody], idx: L<W>) -> [L64<W>; 4] {
+    let mut r = [[0i64; W]; 4];
+    for (i, &b) in idx.0.iter().enumerate() {
+        let sb = bodies.get(b as u32 as usize).unwrap_or(&SolverBody::EMPTY);
+        for (k, x) in [sb.q.c, sb.q.s, sb.p.x, sb.p.y].into_iter().enumerate() {
+            if let Some(slot) = r.get_mut(k).and_then(|f| f.get_mut(i)) {
+                *slot = x.to_bits();
+            }
+        }
+    }
+    r.map(L64)
+}
+
+/// The pose pass on lanes `m` of view `v`: [`arm_at`] for each side and
+/// [`position_error`], lane by lane (the same bits; the unit test compares
+/// them with [`JointLanes::pose`]).
+#[inline(always)]
+fn pose_kernel<const W: usize>(v: &mut View<'_, W>, m: M<W>, bodies: &[SolverBody]) {
+    let mut arms = [[L::splat(0); 2]; 2];
+    let mut centres = [[L64([0; W]); 2]; 2];
+    for s in 0..2 {
+        let [c, sn, px, py] = body_pose(bodies, v.ld(if s == 0 { f::IA } else { f::IB }));
+        centres[s] = [px, py];
+        let (c, sn) = (round::<W, FU>(c, 1 << FU), round::<W, FU>(sn, 1 << FU));
+        let [x, y] = pair(v, f::ANCHOR[s]);
+        let r = [c.mul::<FU>(x).sub(sn.mul::<FU>(y)), sn.mul::<FU>(x).add(c.mul::<FU>(y))];
+        let (iota, kappa) = (v.ld(f::IOTA[s]), v.ld(f::KAPPA[s]));
+        for ((rk, rh_field), g_field) in r.into_iter().zip(f::RH[s]).zip(f::G[s]) {
+            let rh = L64::mul_shift::<{ 2 * FA - FH }>(rk, iota).clamp_abs(ARM_HAT_MAX << FH).narrow();
+            let g = L64::mul_shift::<FK>(kappa, rh).clamp_abs(G_MAX << FH).narrow();
+            v.st(rh_field, rh, m);
+            v.st(g_field, g, m);
+        }
+        arms[s] = r;
+    }
+    for k in 0..2 {
+        // B − A in 64 bits, saturating as the `Scalar` operations do; the
+        // arms (Q10.22) exact in Q32.32.
+        let arm = L64::from(arms[1][k]).shl(32 - FA).sub(L64::from(arms[0][k]).shl(32 - FA));
+        let x = centres[1][k].saturating_sub(centres[0][k]).saturating_add(arm);
+        let d = round::<W, FD>(x, D_MAX << FD);
+        v.st(f::D[k], d, m);
+    }
+}
+
 /// Runs `pass` on lanes `m` of view `v`.
 #[inline(always)]
 fn kernel<const W: usize>(
@@ -395,7 +448,7 @@ fn kernel<const W: usize>(
     let (mut vb, _) = super::contact::gather(bodies, ib);
     let old = pair(v, f::LAMBDA);
     let p = match pass {
-        Pass::Warm => old,
+        Pass::Warm | Pass::Pose => old,
         Pass::Biased => iterate(v, m, false, soft, (&va, &vb), old),
         Pass::Relax => iterate(v, m, true, soft, (&va, &vb), old),
     };
@@ -414,6 +467,10 @@ impl super::Solver<'_> {
     pub(crate) fn pivot_runs<const WIDE: bool>(&mut self, pass: Pass) {
         // Plain loops, no closure: a closure would be compiled apart from
         // the AVX2 function this is inlined into, without AVX2.
+        if pass == Pass::Pose {
+            self.pivot_pose::<WIDE>();
+            return;
+        }
         let ranges = self.pivot_runs.ranges;
         let soft = self.pivot_runs.soft;
         let store: &mut [PivotLanes] = &mut self.pivots;
@@ -440,12 +497,36 @@ impl super::Solver<'_> {
             }
         }
     }
+
+    /// The pose pass over every pivot in lanes, eight at a time with `WIDE`.
+    #[inline(always)]
+    fn pivot_pose<const WIDE: bool>(&mut self) {
+        let count = self.pivot_runs.count;
+        let store: &mut [PivotLanes] = &mut self.pivots;
+        let bodies: &[SolverBody] = &self.bodies;
+        for b in 0..count.div_ceil(LANES) {
+            let Some(blk) = block_mut(store, b) else { break };
+            let n = (count - b * LANES).min(LANES);
+            if WIDE {
+                let mut m = [0; LANES];
+                for (i, x) in m.iter_mut().enumerate() {
+                    *x = -i32::from(i < n);
+                }
+                pose_kernel::<LANES>(&mut View { blk, base: 0 }, M(m), bodies);
+            } else {
+                for l in 0..n {
+                    pose_kernel::<1>(&mut View { blk: &mut *blk, base: l }, M::all(), bodies);
+                }
+            }
+        }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::solver::joint_lanes::{ARM_HAT_MAX, D_MAX, G_MAX};
+    use crate::math::scalar::Scalar;
+    use crate::math::{Rot, Vector2};
     use crate::solver::{xorshift, Bias};
 
     /// A value in [lo, hi]; one round in eight takes an end.
@@ -552,7 +633,7 @@ mod tests {
                         continue;
                     };
                     match pass {
-                        Pass::Warm => j.warm_point(la, lb),
+                        Pass::Warm | Pass::Pose => j.warm_point(la, lb),
                         Pass::Biased => j.solve_point(la, lb, Bias::On),
                         Pass::Relax => j.solve_point(la, lb, Bias::Off),
                     }
@@ -575,5 +656,97 @@ mod tests {
         // The passes move bodies in nearly every round: the comparison is
         // not of no-ops.
         assert!(moved > 3_900, "{moved} of 4,000 rounds moved a body");
+    }
+
+    /// A `Scalar` of random bits within ±2^`bits` (its ends one round in
+    /// eight, and now and then the format's own ends).
+    fn scalar_bits(seed: &mut u64, bits: u32) -> Scalar {
+        let r = xorshift(seed);
+        let b = 1i64 << bits;
+        Scalar::from_bits(match r % 32 {
+            0 => i64::MIN,
+            1 => i64::MAX,
+            2 | 3 => -b,
+            4 | 5 => b,
+            _ => ((r >> 1) as i64) >> (63 - bits),
+        })
+    }
+
+    /// The pose pass gives on eight lanes at once the bits it gives on each
+    /// lane alone, and both [`JointLanes::pose`]'s: arms, ĝ and position
+    /// error, for random anchors, radii, mass ratios, rotations (unit and
+    /// not) and positions (up to the format's ends, where the difference
+    /// saturates).
+    #[test]
+    fn the_pose_pass_equals_the_point_rows_pose() {
+        let wide = {
+            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            {
+                std::arch::is_x86_feature_detected!("avx2")
+            }
+            #[cfg(not(all(feature = "std", target_arch = "x86_64")))]
+            {
+                false
+            }
+        };
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut saturated = 0;
+        for round in 0..3_000 {
+            let mut bodies = [SolverBody::EMPTY; 16];
+            for b in bodies.iter_mut() {
+                let big = if round % 5 == 0 { 62 } else { 38 };
+                b.p = Vector2::new(scalar_bits(&mut seed, big), scalar_bits(&mut seed, big));
+                let angle = Scalar::from_bits(((xorshift(&mut seed) >> 1) as i64) >> 29);
+                b.q = if round % 7 == 0 {
+                    Rot { c: scalar_bits(&mut seed, 33), s: scalar_bits(&mut seed, 33) }
+                } else {
+                    Rot::from_angle(angle)
+                };
+            }
+            let mut store = [[[0; LANES]; 4]; LANES];
+            let mut joints = [JointLanes::INACTIVE; LANES];
+            for (l, j) in joints.iter_mut().enumerate() {
+                let mut rec = record(&mut seed, false);
+                let a = (511i64) << FA;
+                rec.anchor = [0, 1].map(|_| [range(&mut seed, -a, a), range(&mut seed, -a, a)]);
+                rec.iota = [range(&mut seed, 0, 1 << 30), range(&mut seed, 0, 1 << 30)];
+                rec.kappa = [range(&mut seed, 0, 1 << 30), range(&mut seed, 0, 1 << 30)];
+                put(&mut store, l, l as u32, (2 * l as u32, 2 * l as u32 + 1), &rec);
+                *j = JointLanes::from_point_record(&rec, LaneSoft::new(crate::solver::Softness::RIGID));
+                if let (Some(a), Some(b)) = (bodies.get(2 * l), bodies.get(2 * l + 1)) {
+                    j.pose(a, b);
+                }
+            }
+            let mut s1 = store;
+            if let Some(blk) = block_mut(&mut s1, 0) {
+                for l in 0..LANES {
+                    pose_kernel::<1>(&mut View { blk: &mut *blk, base: l }, M::all(), &bodies);
+                }
+            }
+            if wide {
+                let mut s8 = store;
+                if let Some(blk) = block_mut(&mut s8, 0) {
+                    pose_kernel::<LANES>(&mut View { blk, base: 0 }, M::all(), &bodies);
+                }
+                assert_eq!(s8, s1, "round {round}: eight lanes against one");
+            }
+            let blk = block_mut(&mut s1, 0).map(|b| *b).unwrap_or([[0; LANES]; FIELDS]);
+            for (l, j) in joints.iter().enumerate() {
+                let (rh, g, d) = j.pose_state();
+                for s in 0..2 {
+                    assert_eq!(
+                        [blk[f::RH[s][0]][l], blk[f::RH[s][1]][l]],
+                        rh[s],
+                        "round {round} lane {l}: r̂"
+                    );
+                    assert_eq!([blk[f::G[s][0]][l], blk[f::G[s][1]][l]], g[s], "round {round} lane {l}: ĝ");
+                }
+                assert_eq!([blk[f::D[0]][l], blk[f::D[1]][l]], d, "round {round} lane {l}: d");
+                saturated += usize::from(d.iter().any(|&x| x.unsigned_abs() == (D_MAX << FD) as u32));
+            }
+        }
+        // Some errors reach the format's bound (far bodies): the clamps are
+        // compared too.
+        assert!(saturated > 100, "{saturated} lanes had a saturated error");
     }
 }
