@@ -53,6 +53,7 @@ use crate::collision::{contact_shapes, BroadPhase};
 use crate::compound::{is_compound, shapes_of};
 use crate::geometry::chain::local_rect;
 use crate::geometry::PolygonPath;
+use crate::index::Proxy;
 use crate::limits::SPECULATIVE_DISTANCE;
 use crate::math::scalar::{ONE, ZERO};
 use crate::math::{Rect, Rot, Scalar, Transform, Vector2};
@@ -188,24 +189,8 @@ pub(crate) fn run(
             }
         }
         // Bodies whose path left their broad-phase box: every body whose box
-        // meets the path.
-        for (p, &f) in proxies.iter().zip(slots) {
-            let (Some(sb), Some(b)) = (solver.get(f as usize), bodies.get_at(f)) else { continue };
-            if sb.ccd & SCAN == 0 || b.bullet != bullets {
-                continue;
-            }
-            let path = p.aabb.union(compute_aabb(b, paths)).expand(SPECULATIVE_DISTANCE);
-            for (q, &o) in proxies.iter().zip(slots) {
-                if o == f || !q.aabb.overlaps(path) {
-                    continue;
-                }
-                if let Some(t) = pass.pair(solver, f, o, true, &mut out.sweeps) {
-                    if let Some(sb) = solver.get_mut(f as usize) {
-                        sb.toi = sb.toi.min(t);
-                    }
-                }
-            }
-        }
+        // meets the path (`scan`).
+        scan(&pass, proxies, slots, solver, &mut out.sweeps);
         // This pass's impacts: each body back on its path at its earliest one.
         for (h, b) in bodies.iter_mut() {
             let Some(sb) = solver.get(h.index() as usize) else { continue };
@@ -222,6 +207,70 @@ pub(crate) fn run(
     out
 }
 
+/// The sweeps of the bodies whose path left their broad-phase box (marked
+/// [`SCAN`]) against every body whose box meets the path and that the pass
+/// can stop them against, each body's earliest impact kept in its `toi`.
+///
+/// Every such pair is swept once whichever loop is outside, and the earliest
+/// impact does not depend on the order, so the loop over the fewer bodies is
+/// outside: the scanning bodies (a few bodies knocked far off their course),
+/// or the targets (in the non-bullet pass only static and kinematic bodies;
+/// a falling net of 10,000 pivoted circles had 8,500 bodies to scan and 7
+/// static ones: 85 M box tests a step the one way, 70 k the other).
+fn scan(pass: &Pass<'_, '_>, proxies: &[Proxy], slots: &[u32], solver: &mut [SolverBody], sweeps: &mut u32) {
+    let bodies = pass.bodies;
+    let scanning = |f: u32, solver: &[SolverBody]| {
+        let scans = solver.get(f as usize).is_some_and(|sb| sb.ccd & SCAN != 0);
+        scans && bodies.get_at(f).is_some_and(|b| b.bullet == pass.bullets)
+    };
+    let target = |o: u32| bodies.get_at(o).is_some_and(|b| pass.can_stop_against(b));
+    let (mut scans, mut targets) = (0usize, 0usize);
+    for &s in slots {
+        scans += usize::from(scanning(s, solver));
+        targets += usize::from(target(s));
+    }
+    if scans == 0 || targets == 0 {
+        return;
+    }
+    let path_of = |p: &Proxy, f: u32| {
+        bodies.get_at(f).map(|b| p.aabb.union(compute_aabb(b, pass.paths)).expand(SPECULATIVE_DISTANCE))
+    };
+    let mut sweep = |f: u32, o: u32, solver: &mut [SolverBody]| {
+        if let Some(t) = pass.pair(solver, f, o, true, sweeps) {
+            if let Some(sb) = solver.get_mut(f as usize) {
+                sb.toi = sb.toi.min(t);
+            }
+        }
+    };
+    if scans <= targets {
+        for (p, &f) in proxies.iter().zip(slots) {
+            if !scanning(f, solver) {
+                continue;
+            }
+            let Some(path) = path_of(p, f) else { continue };
+            for (q, &o) in proxies.iter().zip(slots) {
+                if o != f && q.aabb.overlaps(path) {
+                    sweep(f, o, solver);
+                }
+            }
+        }
+    } else {
+        for (q, &o) in proxies.iter().zip(slots) {
+            if !target(o) {
+                continue;
+            }
+            for (p, &f) in proxies.iter().zip(slots) {
+                if o == f || !scanning(f, solver) {
+                    continue;
+                }
+                if path_of(p, f).is_some_and(|path| q.aabb.overlaps(path)) {
+                    sweep(f, o, solver);
+                }
+            }
+        }
+    }
+}
+
 /// One pass's view: the non-bullet fast bodies against static and kinematic
 /// bodies, or the bullets against every non-bullet body.
 struct Pass<'p, 'a> {
@@ -234,6 +283,16 @@ struct Pass<'p, 'a> {
 }
 
 impl Pass<'_, '_> {
+    /// Whether this pass sweeps its fast bodies against `b` at all (the
+    /// first test of [`pair`](Self::pair) on the target).
+    fn can_stop_against(&self, b: &Body) -> bool {
+        !b.out_of_bounds
+            && match b.body_type {
+                BodyType::Static | BodyType::Kinematic => true,
+                BodyType::Dynamic => self.bullets && !b.bullet,
+            }
+    }
+
     /// The time of impact of fast body `f` against body `o`, if this pass
     /// sweeps that pair and they meet on the way. `filter` applies the
     /// broad phase's pair filter (the candidate pairs have passed it).
