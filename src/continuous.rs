@@ -226,12 +226,14 @@ fn scan(pass: &Pass<'_, '_>, proxies: &[Proxy], slots: &[u32], solver: &mut [Sol
         scans && bodies.get_at(f).is_some_and(|b| b.bullet == pass.bullets)
     };
     let target = |o: u32| bodies.get_at(o).is_some_and(|b| pass.can_stop_against(b));
-    let (mut scans, mut targets) = (0usize, 0usize);
-    for &s in slots {
-        scans += usize::from(scanning(s, solver));
-        targets += usize::from(target(s));
+    // Most steps scan nothing: count the scanning bodies first, and only then
+    // the targets (which reads every body).
+    let scans = slots.iter().filter(|&&s| scanning(s, solver)).count();
+    if scans == 0 {
+        return;
     }
-    if scans == 0 || targets == 0 {
+    let targets = slots.iter().filter(|&&s| target(s)).count();
+    if targets == 0 {
         return;
     }
     let path_of = |p: &Proxy, f: u32| {
@@ -303,7 +305,7 @@ impl Pass<'_, '_> {
         let (bf, bo) = (self.bodies.get_at(f)?, self.bodies.get_at(o)?);
         // Sensors never stop anything, and are never stopped (for compound
         // bodies, shape by shape below).
-        if sf.ccd & FAST == 0 || bf.bullet != self.bullets || bo.out_of_bounds {
+        if sf.ccd & FAST == 0 || bf.bullet != self.bullets || !self.can_stop_against(bo) {
             return None;
         }
         // The target's pose to sweep against: static and kinematic bodies move
@@ -313,8 +315,7 @@ impl Pass<'_, '_> {
             BodyType::Static | BodyType::Kinematic => {
                 (Transform::new(so.p0, so.q0), bo.position - so.p0, so.angle)
             }
-            BodyType::Dynamic if self.bullets && !bo.bullet => (bo.transform(), Vector2::ZERO, ZERO),
-            BodyType::Dynamic => return None,
+            BodyType::Dynamic => (bo.transform(), Vector2::ZERO, ZERO),
         };
         let key = (f.min(o), f.max(o));
         if filter && self.held.binary_search(&key).is_ok() {
