@@ -10,8 +10,8 @@
 mod golden_scenes;
 
 use golden_scenes::{
-    Outcome, GOLDEN_BANDED, GOLDEN_COMPOUND, GOLDEN_CORE_SCENE, GOLDEN_LONG, GOLDEN_MIXED, GOLDEN_PYRAMID,
-    GOLDEN_SHAPES,
+    Outcome, GOLDEN_BANDED, GOLDEN_COMPOUND, GOLDEN_CORE_SCENE, GOLDEN_LONG, GOLDEN_MIXED, GOLDEN_PIVOT_NET,
+    GOLDEN_PYRAMID, GOLDEN_SHAPES,
 };
 
 fn report(name: &str, steps: u32, out: &Outcome) {
@@ -39,6 +39,13 @@ fn banded_tower_hash_is_the_committed_constant() {
     let out = golden_scenes::banded_tower().expect("banded tower");
     report("banded-tower", golden_scenes::BANDED_STEPS, &out);
     assert_eq!(out.hash, GOLDEN_BANDED);
+}
+
+#[test]
+fn pivot_net_hash_is_the_committed_constant() {
+    let out = golden_scenes::pivot_net().expect("pivot net");
+    report("pivot net", golden_scenes::NET_STEPS, &out);
+    assert_eq!(out.hash, GOLDEN_PIVOT_NET);
 }
 
 #[test]

@@ -12,8 +12,8 @@ use arphysics::{
     Vector2, World, WorldDef,
 };
 use golden_scenes::{
-    GOLDEN_BANDED, GOLDEN_COMPOUND, GOLDEN_CORE_SCENE, GOLDEN_LONG, GOLDEN_MIXED, GOLDEN_PYRAMID,
-    GOLDEN_SHAPES,
+    GOLDEN_BANDED, GOLDEN_COMPOUND, GOLDEN_CORE_SCENE, GOLDEN_LONG, GOLDEN_MIXED, GOLDEN_PIVOT_NET,
+    GOLDEN_PYRAMID, GOLDEN_SHAPES,
 };
 
 /// The levels to compare: portable, and the best one here (if higher).
@@ -30,7 +30,7 @@ fn levels() -> Vec<SimdLevel> {
 #[test]
 fn every_golden_scene_hashes_to_its_constant_at_every_level() {
     type Scene = fn() -> Result<golden_scenes::Outcome, golden_scenes::SceneError>;
-    let scenes: [(&str, Scene, u64); 7] = [
+    let scenes: [(&str, Scene, u64); 8] = [
         ("core", golden_scenes::core_scene, GOLDEN_CORE_SCENE),
         ("pyramid", golden_scenes::pyramid, GOLDEN_PYRAMID),
         ("mixed", golden_scenes::mixed, GOLDEN_MIXED),
@@ -38,6 +38,7 @@ fn every_golden_scene_hashes_to_its_constant_at_every_level() {
         ("every-shape", golden_scenes::shapes, GOLDEN_SHAPES),
         ("compound-body", golden_scenes::compound, GOLDEN_COMPOUND),
         ("banded-tower", golden_scenes::banded_tower, GOLDEN_BANDED),
+        ("pivot net", golden_scenes::pivot_net, GOLDEN_PIVOT_NET),
     ];
     for level in levels() {
         limit_simd_level(level);

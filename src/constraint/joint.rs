@@ -140,6 +140,7 @@ impl Joint {
         row.bodies = [self.def.body_a.index(), self.def.body_b.map_or(0, |hb| hb.index())];
         row.slot = slot;
         row.world_point = world_point;
+        row.pivot_colour = JointRow::NO_LANES;
         let anchors = [self.def.anchor_a, self.def.anchor_b];
         let spring = |stiffness, damping, rest_length| {
             RowSolve::Spring(SpringRow {

@@ -26,13 +26,24 @@ pub struct JointRow {
     pub(crate) slot: u32,
     /// B is a fixed world point: the passes give the joint a static stand-in.
     pub(crate) world_point: bool,
+    /// The colour it takes in the pivot lanes this step, or
+    /// [`NO_LANES`](Self::NO_LANES) when it is solved one at a time.
+    pub(crate) pivot_colour: u8,
     pub(crate) solve: RowSolve,
 }
 
 impl JointRow {
+    /// [`pivot_colour`](Self::pivot_colour) of a row solved one at a time.
+    pub(crate) const NO_LANES: u8 = u8::MAX;
+
     /// An unused row.
-    pub const EMPTY: Self =
-        Self { bodies: [0; 2], slot: 0, world_point: false, solve: RowSolve::Spring(SpringRow::EMPTY) };
+    pub const EMPTY: Self = Self {
+        bodies: [0; 2],
+        slot: 0,
+        world_point: false,
+        pivot_colour: Self::NO_LANES,
+        solve: RowSolve::Spring(SpringRow::EMPTY),
+    };
 }
 
 /// What a row solves.
@@ -150,6 +161,27 @@ impl ConstraintRow {
 }
 
 impl JointRow {
+    /// A plain pivot's point row (no limits, no motor, between two bodies),
+    /// which the pivot lanes can solve.
+    pub(crate) fn plain_pivot(&self) -> Option<&JointLanes> {
+        match &self.solve {
+            RowSolve::Constraint(c)
+                if !self.world_point && c.kind == (ConstraintKind::Pivot { limits: false, motor: false }) =>
+            {
+                Some(&c.lanes)
+            }
+            _ => None,
+        }
+    }
+
+    /// The row's lane state, for the pivot lanes' write-back.
+    pub(crate) fn lanes_mut(&mut self) -> Option<&mut JointLanes> {
+        match &mut self.solve {
+            RowSolve::Constraint(c) => Some(&mut c.lanes),
+            RowSolve::Spring(_) => None,
+        }
+    }
+
     /// Applies the impulses it ended the last sub-step with (springs have
     /// none).
     pub(crate) fn warm_start(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes) {

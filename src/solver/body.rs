@@ -28,6 +28,9 @@ pub(crate) const DPY: usize = 5;
 /// Non-zero when a contact's deep push-out moved the body (changed its
 /// motion lanes) since the last integration.
 pub(crate) const MOVED: usize = 6;
+/// The colours this body's pivots in lanes took this step (a bit mask; see
+/// `pivot_lanes`): the record's spare field, which the kernels never read.
+pub(crate) const PIVOT_COLOURS: usize = 7;
 
 /// The smallest body radius the solver uses for rim speeds (m): keeps
 /// 1/r_b within its format for the tiniest shapes.

@@ -23,6 +23,7 @@
 use core::sync::atomic::{AtomicU8, Ordering};
 
 use super::colour::Kernel;
+use super::pivot_lanes::Pass;
 use super::{Solver, Sweep};
 
 /// The instruction sets the contact kernels can run on.
@@ -98,6 +99,31 @@ pub(crate) fn run<K: Kernel>(solver: &mut Solver<'_>, sweep: Sweep, k: &K) {
         }
     }
     solver.runs::<K, false>(sweep, k);
+}
+
+/// Runs pass `pass` over the pivots in lanes ([`pivot_lanes`](super::pivot_lanes))
+/// at the current [`simd_level`].
+pub(crate) fn run_pivots(solver: &mut Solver<'_>, pass: Pass) {
+    if solver.pivot_runs.count == 0 {
+        return;
+    }
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    {
+        if simd_level() == SimdLevel::Avx2 {
+            // SAFETY: as in `run`.
+            unsafe { pivots_avx2(solver, pass) };
+            return;
+        }
+    }
+    solver.pivot_runs::<false>(pass);
+}
+
+/// [`run_pivots`] compiled with AVX2: the pivot kernel inlined here, eight
+/// lanes wide.
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[target_feature(enable = "avx2")]
+fn pivots_avx2(solver: &mut Solver<'_>, pass: Pass) {
+    solver.pivot_runs::<true>(pass);
 }
 
 /// [`run`] compiled with AVX2: the kernels are inlined here, eight lanes wide.

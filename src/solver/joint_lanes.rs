@@ -77,29 +77,29 @@ use super::lanes::{self, from_scalar, mul, sym, to_scalar, FQ, FU, FV, LAMBDA_MA
 use super::{Bias, Softness};
 
 /// Fractional bits of anchors, world arms and 1/r_b (Q10.22).
-const FA: u32 = 22;
+pub(super) const FA: u32 = 22;
 /// Fractional bits of arms in body radii and their κ multiples (Q12.20).
-const FH: u32 = 20;
+pub(super) const FH: u32 = 20;
 /// Fractional bits of κ (Q5.27).
-const FK: u32 = 27;
+pub(super) const FK: u32 = 27;
 /// Fractional bits of α (Q9.23).
 const FAL: u32 = 23;
 /// Fractional bits of position errors and lengths (Q13.19).
-const FD: u32 = 19;
+pub(super) const FD: u32 = 19;
 /// Fractional bits of angles (Q4.28).
 const FT: u32 = 28;
 /// One in Q2.30.
 const ONE_U: i32 = 1 << FU;
 /// Bound of arms in body radii (whole radii).
-const ARM_HAT_MAX: i64 = 1024;
+pub(super) const ARM_HAT_MAX: i64 = 1024;
 /// Bound of ĝ and γ.
-const G_MAX: i64 = 2047;
+pub(super) const G_MAX: i64 = 2047;
 /// Bound of position errors and lengths, m.
-const D_MAX: i64 = 2047;
+pub(super) const D_MAX: i64 = 2047;
 /// Bound of a bias velocity, Q16.16.
-const BIAS_MAX: i64 = 4096 << FV;
+pub(super) const BIAS_MAX: i64 = 4096 << FV;
 /// Bound of a rate or rate + bias before it scales a row, Q16.16.
-const RATE_MAX: i64 = (1 << 31) - 1;
+pub(super) const RATE_MAX: i64 = (1 << 31) - 1;
 
 /// `(a·b + 2^(K−1)) >> K` on the exact 64-bit product, kept in 64 bits.
 #[inline(always)]
@@ -150,13 +150,13 @@ fn get(lane: &BodyLanes, k: usize) -> i32 {
 /// (Q2.30).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct LaneSoft {
-    rate: i32,
-    mass_scale: i32,
-    impulse_scale: i32,
+    pub(super) rate: i32,
+    pub(super) mass_scale: i32,
+    pub(super) impulse_scale: i32,
 }
 
 impl LaneSoft {
-    fn new(s: Softness) -> Self {
+    pub(super) fn new(s: Softness) -> Self {
         Self {
             rate: from_scalar(s.bias_rate, FQ, 1 << 21),
             mass_scale: from_scalar(s.mass_scale, FU, 1),
@@ -224,6 +224,47 @@ fn clamp_length(v: [i32; 2], max: i32) -> [i32; 2] {
     [(x * max / len) as i32, (y * max / len) as i32]
 }
 
+/// A local anchor (Q10.22) turned by `q`: the world arm r (Q10.22), the arm
+/// in body radii r̂ = r/r_b (Q12.20, from `iota` = 1/r_b) and ĝ = κ·r̂
+/// (Q12.20), for the point rows of the joints one at a time and of the
+/// pivots in lanes ([`pivot_lanes`](super::pivot_lanes)) alike.
+#[inline(always)]
+pub(super) fn arm_at(anchor: [i32; 2], iota: i32, kappa: i32, q: Rot) -> [[i32; 2]; 3] {
+    // `from_scalar(x, FU, 1)` with the clamp a cold call (`narrow`).
+    let unit = |x: Scalar| {
+        let bits = x.to_bits();
+        narrow((bits >> (32 - FU)) + ((bits >> (31 - FU)) & 1), 1 << FU)
+    };
+    let (c, s) = (unit(q.c), unit(q.s));
+    let [x, y] = anchor;
+    // |anchor| ≤ 256 m a component, so each component stays ≤ 363 m.
+    let r = [mul::<FU>(c, x).wrapping_sub(mul::<FU>(s, y)), mul::<FU>(s, x).wrapping_add(mul::<FU>(c, y))];
+    let rh = r.map(|r| narrow(wide::<{ 2 * FA - FH }>(r, iota), ARM_HAT_MAX << FH));
+    let g = rh.map(|rh| narrow(wide::<FK>(kappa, rh), G_MAX << FH));
+    [r, rh, g]
+}
+
+/// The position error B − A of two anchors (m, Q13.19) from the bodies'
+/// centres `pa`, `pb` (`pb` plus `base`, a joint to a world point's fixed
+/// point) and the world arms `ra`, `rb` (Q10.22).
+#[inline(always)]
+pub(super) fn position_error(
+    pa: Vector2,
+    pb: Vector2,
+    base: Vector2,
+    ra: [i32; 2],
+    rb: [i32; 2],
+) -> [i32; 2] {
+    // B − A in 64 bits: positions (Q32.32, |x| < 2³¹ each) differ by
+    // less than 2⁶³, and the arms (Q10.22) are exact in Q32.32.
+    let c = (pb + base) - pa;
+    let arm = |r: i32| i64::from(r) << (32 - FA);
+    let dx = c.x.to_bits().saturating_add(arm(rb[0]) - arm(ra[0]));
+    let dy = c.y.to_bits().saturating_add(arm(rb[1]) - arm(ra[1]));
+    let round = |x: i64| narrow((x >> (32 - FD)) + ((x >> (31 - FD)) & 1), D_MAX << FD);
+    [round(dx), round(dy)]
+}
+
 /// One body's side of a joint: its ratios for the step and its arm at the
 /// current pose.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -273,21 +314,7 @@ impl Side {
     /// The arm at rotation `q`.
     #[inline(always)]
     fn pose(&mut self, q: Rot) {
-        // `from_scalar(x, FU, 1)` with the clamp a cold call (`narrow`).
-        let unit = |x: Scalar| {
-            let bits = x.to_bits();
-            narrow((bits >> (32 - FU)) + ((bits >> (31 - FU)) & 1), 1 << FU)
-        };
-        let (c, s) = (unit(q.c), unit(q.s));
-        let [x, y] = self.anchor;
-        // |anchor| ≤ 256 m a component, so each component stays ≤ 363 m.
-        self.r =
-            [mul::<FU>(c, x).wrapping_sub(mul::<FU>(s, y)), mul::<FU>(s, x).wrapping_add(mul::<FU>(c, y))];
-        for k in 0..2 {
-            let (r, rh, g) = (self.r[k], &mut self.rh[k], &mut self.g[k]);
-            *rh = narrow(wide::<{ 2 * FA - FH }>(r, self.iota), ARM_HAT_MAX << FH);
-            *g = narrow(wide::<FK>(self.kappa, *rh), G_MAX << FH);
-        }
+        [self.r, self.rh, self.g] = arm_at(self.anchor, self.iota, self.kappa, q);
     }
 
     /// The arm in world orientation as a `Scalar` (exact).
@@ -397,6 +424,22 @@ pub(crate) struct JointLanes {
     sum: [i64; 2],
     inv_s: Scalar,
     inv_k: Scalar,
+}
+
+/// A point row's per-step values, in the formats of [`JointLanes`]: per
+/// side ρ, κ, 1/r_b, the local anchor, and the arm r̂ and ĝ = κ·r̂ at the
+/// step's first pose; M̂ (m11, m12, m22); the position error d; λ̂.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct PointRecord {
+    pub(super) rho: [i32; 2],
+    pub(super) kappa: [i32; 2],
+    pub(super) iota: [i32; 2],
+    pub(super) anchor: [[i32; 2]; 2],
+    pub(super) rh: [[i32; 2]; 2],
+    pub(super) g: [[i32; 2]; 2],
+    pub(super) m: [i32; 3],
+    pub(super) d: [i32; 2],
+    pub(super) lambda: [i32; 2],
 }
 
 /// Which accumulated angular impulse a row uses.
@@ -547,14 +590,7 @@ impl JointLanes {
         let [sa, sb] = &mut self.side;
         sa.pose(a.q);
         sb.pose(b.q);
-        // B − A in 64 bits: positions (Q32.32, |x| < 2³¹ each) differ by
-        // less than 2⁶³, and the arms (Q10.22) are exact in Q32.32.
-        let c = (b.p + self.base) - a.p;
-        let arm = |r: i32| i64::from(r) << (32 - FA);
-        let dx = c.x.to_bits().saturating_add(arm(sb.r[0]) - arm(sa.r[0]));
-        let dy = c.y.to_bits().saturating_add(arm(sb.r[1]) - arm(sa.r[1]));
-        let round = |x: i64| narrow((x >> (32 - FD)) + ((x >> (31 - FD)) & 1), D_MAX << FD);
-        self.d = [round(dx), round(dy)];
+        self.d = position_error(a.p, b.p, self.base, sa.r, sb.r);
     }
 
     /// The rod's axis, length error and effective mass at the current pose
@@ -840,6 +876,67 @@ impl JointLanes {
             *x = new;
         }
         new.wrapping_sub(old)
+    }
+
+    /// A pivot's point row as the pivots in lanes take it
+    /// ([`pivot_lanes`](super::pivot_lanes)), or `None` unless the point row
+    /// is all that runs (no angular rows) and it runs, between two bodies.
+    pub(super) fn point_record(&self) -> Option<PointRecord> {
+        if !self.linear || self.angular || self.base != Vector2::ZERO {
+            return None;
+        }
+        let [a, b] = &self.side;
+        Some(PointRecord {
+            rho: [a.rho, b.rho],
+            kappa: [a.kappa, b.kappa],
+            iota: [a.iota, b.iota],
+            anchor: [a.anchor, b.anchor],
+            rh: [a.rh, b.rh],
+            g: [a.g, b.g],
+            m: self.m,
+            d: self.d,
+            lambda: self.lambda,
+        })
+    }
+
+    /// A point row built from a record and a softness (the pivot lanes'
+    /// unit test's reference).
+    #[cfg(test)]
+    pub(super) fn from_point_record(r: &PointRecord, soft: LaneSoft) -> Self {
+        let mut j = Self::INACTIVE;
+        j.linear = true;
+        j.side = [0, 1].map(|s| Side {
+            anchor: r.anchor[s],
+            rho: r.rho[s],
+            kappa: r.kappa[s],
+            alpha: 0,
+            iota: r.iota[s],
+            r: [0; 2],
+            rh: r.rh[s],
+            g: r.g[s],
+        });
+        (j.m, j.d, j.lambda, j.soft) = (r.m, r.d, r.lambda, soft);
+        j
+    }
+
+    /// The arms in body radii, ĝ and the position error (tests).
+    #[cfg(test)]
+    pub(super) fn pose_state(&self) -> ([[i32; 2]; 2], [[i32; 2]; 2], [i32; 2]) {
+        let [a, b] = &self.side;
+        ([a.rh, b.rh], [a.g, b.g], self.d)
+    }
+
+    /// The accumulated λ̂ and the λ̂ applied this step, summed (tests).
+    #[cfg(test)]
+    pub(super) fn point_state(&self) -> ([i32; 2], [i64; 2]) {
+        (self.lambda, self.sum)
+    }
+
+    /// Takes back what the pivots in lanes did to the point row over the
+    /// step: the accumulated λ̂ and the λ̂ applied, summed.
+    pub(super) fn set_point(&mut self, lambda: [i32; 2], sum: [i64; 2]) {
+        self.lambda = lambda;
+        self.sum = sum;
     }
 
     /// Whether the linear rows ran this step (the persistent impulses are

@@ -443,6 +443,95 @@ impl<const W: usize> L64<W> {
         }
         L(r)
     }
+    /// Clamped to ±`b` (b ≥ 0).
+    #[inline(always)]
+    pub(crate) fn clamp_abs(self, b: i64) -> Self {
+        let mut r = self.0;
+        for r in r.iter_mut() {
+            *r = (*r).clamp(-b, b);
+        }
+        Self(r)
+    }
+    /// The low 32 bits of each lane (the callers' bounds make it lossless).
+    #[inline(always)]
+    pub(crate) fn narrow(self) -> L<W> {
+        let mut r = [0i32; W];
+        for (r, &a) in r.iter_mut().zip(&self.0) {
+            *r = a as i32;
+        }
+        L(r)
+    }
+    /// `x >> k` (arithmetic; `k` < 64, a constant where inlined).
+    #[inline(always)]
+    pub(crate) fn shr(self, k: u32) -> Self {
+        let mut r = self.0;
+        for r in r.iter_mut() {
+            *r >>= k % 64;
+        }
+        Self(r)
+    }
+    /// `x << k` (bits shifted out are lost; `k` < 64).
+    #[inline(always)]
+    pub(crate) fn shl(self, k: u32) -> Self {
+        let mut r = self.0;
+        for r in r.iter_mut() {
+            *r <<= k % 64;
+        }
+        Self(r)
+    }
+    /// Bitwise and with `b`.
+    #[inline(always)]
+    pub(crate) fn and(self, b: i64) -> Self {
+        let mut r = self.0;
+        for r in r.iter_mut() {
+            *r &= b;
+        }
+        Self(r)
+    }
+    /// The saturating sum (`i64::saturating_add`), without a branch.
+    #[inline(always)]
+    pub(crate) fn saturating_add(self, o: Self) -> Self {
+        let mut r = self.0;
+        for (r, &b) in r.iter_mut().zip(&o.0) {
+            let a = *r;
+            let s = a.wrapping_add(b);
+            // Overflow: both operands of one sign and the sum of the other;
+            // then the bound of a's sign.
+            let over = ((a ^ s) & (b ^ s)) < 0;
+            *r = if over { (a >> 63) ^ i64::MAX } else { s };
+        }
+        Self(r)
+    }
+    /// The saturating difference (`i64::saturating_sub`), without a branch.
+    #[inline(always)]
+    pub(crate) fn saturating_sub(self, o: Self) -> Self {
+        let mut r = self.0;
+        for (r, &b) in r.iter_mut().zip(&o.0) {
+            let a = *r;
+            let s = a.wrapping_sub(b);
+            let over = ((a ^ b) & (a ^ s)) < 0;
+            *r = if over { (a >> 63) ^ i64::MAX } else { s };
+        }
+        Self(r)
+    }
+    /// Lanes made of low and high words.
+    #[inline(always)]
+    pub(crate) fn join(lo: L<W>, hi: L<W>) -> Self {
+        let mut r = [0i64; W];
+        for ((r, &lo), &hi) in r.iter_mut().zip(&lo.0).zip(&hi.0) {
+            *r = (i64::from(hi) << 32) | i64::from(lo.cast_unsigned());
+        }
+        Self(r)
+    }
+    /// The low and high words of each lane.
+    #[inline(always)]
+    pub(crate) fn split(self) -> (L<W>, L<W>) {
+        let (mut lo, mut hi) = ([0i32; W], [0i32; W]);
+        for ((lo, hi), &a) in lo.iter_mut().zip(hi.iter_mut()).zip(&self.0) {
+            (*lo, *hi) = (a as i32, (a >> 32) as i32);
+        }
+        (L(lo), L(hi))
+    }
     /// Clamped to [0, `hi`] and narrowed.
     #[inline(always)]
     pub(crate) fn clamp_narrow(self, hi: i32) -> L<W> {

@@ -102,12 +102,16 @@ mod contact;
 mod dispatch;
 mod joint_lanes;
 mod lanes;
+mod pivot_lanes;
 mod softness;
 mod sweep;
 
 pub use body::{BodyLanes, SolverBody};
 pub use contact::{ContactConstraint, ContactScratch};
 pub use dispatch::{limit_simd_level, simd_level, SimdLevel};
+use pivot_lanes::Pass;
+pub use pivot_lanes::PivotLanes;
+pub(crate) use pivot_lanes::PivotRuns;
 
 pub(crate) use body::{angular_speed_limit, inverse_mass};
 use contact::LaneParams;
@@ -187,9 +191,11 @@ pub(crate) fn solve(
             sb.add_force(lane);
         }
         for_each_joint(solver, Sweep::Forward, |j, (_, la), (_, lb)| j.warm_start(la, lb));
+        dispatch::run_pivots(solver, Pass::Warm);
         let count_totals = substep > 0;
         dispatch::run(solver, warm_start_direction(substep), &contact::WarmStart { count_totals });
         for_each_joint(solver, Sweep::Forward, |j, a, b| j.solve(a, b, h, Bias::On));
+        dispatch::run_pivots(solver, Pass::Biased);
         if user {
             store_bodies(solver, bodies);
             solve_user_constraints(bodies, constraints, h);
@@ -202,7 +208,12 @@ pub(crate) fn solve(
         // Relax: one sweep in the sub-step's direction; the last sub-step
         // adds a forward sweep, which drains what the push-out left in the
         // velocities the step ends with.
-        // The joints' relax pass runs in reverse slot order in every sub-step.
+        // The joints' relax pass: the pivot lanes' colours in order, then
+        // the other joints in reverse slot order.
+        if solver.pivot_runs.count > 0 {
+            dispatch::run_pivots(solver, Pass::Pose);
+            dispatch::run_pivots(solver, Pass::Relax);
+        }
         for_each_joint(solver, Sweep::Reverse, |j, a, b| j.solve(a, b, h, Bias::Off));
         contact_sweep(solver, &params, Bias::Off, sweep);
         if substep + 1 == n {
@@ -212,6 +223,7 @@ pub(crate) fn solve(
     dispatch::run(solver, Sweep::Forward, &contact::Restitute { params: &params });
     solver.store_contacts(arbiters.live_mut());
     store_bodies(solver, bodies);
+    finish_pivots(solver);
     store_joints(solver, joints);
     for (_, b) in bodies.iter_mut() {
         b.force_dv = Vector2::ZERO;
@@ -309,7 +321,13 @@ fn for_each_joint(
     let lanes: &mut [BodyLanes] = &mut solver.lanes;
     let rows: &mut [JointRow] = &mut solver.joints;
     let rows = rows.get_mut(..solver.joint_count).unwrap_or_default();
+    if solver.pivot_runs.one_at_a_time == 0 {
+        return;
+    }
     let mut visit = |row: &mut JointRow| {
+        if row.pivot_colour != JointRow::NO_LANES {
+            return;
+        }
         let [ia, ib] = row.bodies;
         if row.world_point {
             let (mut ground, mut ground_lanes) = (SolverBody::EMPTY, BodyLanes::EMPTY);
@@ -341,7 +359,9 @@ fn prepare_joints(
     let ground = crate::constraint::ground();
     let sground = SolverBody::EMPTY;
     let sbodies: &[SolverBody] = &solver.bodies;
+    let lanes: &mut [BodyLanes] = &mut solver.lanes;
     let rows: &mut [JointRow] = &mut solver.joints;
+    let mut colouring = pivot_lanes::Colouring::new(&solver.pivots);
     let mut count = 0;
     for (i, j) in joints.iter_mut() {
         let b = j.def.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
@@ -353,12 +373,16 @@ fn prepare_joints(
         match (a, sa, rows.get_mut(count)) {
             (Some(a), Some(sa), Some(row)) => {
                 j.prepare(row, i.index(), a, b, sa, sb, ctx.joint_softness, ctx.h, ctx.inv_h);
+                colouring.colour(row, lanes);
                 count += 1;
             }
             _ => j.deactivate(),
         }
     }
     solver.joint_count = count;
+    let rows: &[JointRow] = &solver.joints;
+    let rows = rows.get(..count).unwrap_or_default();
+    solver.pivot_runs = colouring.fill(rows, &mut solver.pivots, ctx.joint_softness);
     // A dormant game constraint (a body of it removed) is skipped.
     for (_, c) in constraints.iter_mut() {
         let b = match c.body_b {
@@ -369,6 +393,13 @@ fn prepare_joints(
             c.constraint.prepare(a, b, ctx.dt);
         }
     }
+}
+
+/// After the sub-steps: the pivot lanes' impulses back into their rows.
+fn finish_pivots(solver: &mut Solver<'_>) {
+    let rows: &mut [JointRow] = &mut solver.joints;
+    let count = solver.pivot_runs.count;
+    pivot_lanes::finish(&mut solver.pivots, count, rows);
 }
 
 /// After the sub-steps: each row's impulses back into its joint, and whether
@@ -421,6 +452,10 @@ pub(crate) struct Solver<'a> {
     pub(crate) joints: ManagedSlice<'a, JointRow>,
     /// Joint rows in use this step.
     pub(crate) joint_count: usize,
+    /// The plain pivots' lanes ([`pivot_lanes`]): one record per joint slot.
+    pub(crate) pivots: ManagedSlice<'a, PivotLanes>,
+    /// Where each colour of them is this step.
+    pub(crate) pivot_runs: PivotRuns,
     /// Where each colour's lanes are: the overflow, then colours 0..23.
     pub(crate) ranges: [(u32, u32); colour::RUNS],
     /// Lanes in use this step.

@@ -185,6 +185,8 @@ impl<'a> World<'a> {
                 scratch: s.contact_scratch,
                 joints: s.joint_rows,
                 joint_count: 0,
+                pivots: s.pivot_lanes,
+                pivot_runs: crate::solver::PivotRuns::EMPTY,
                 ranges: [(0, 0); crate::solver::RUNS],
                 count: 0,
                 overflow: 0,

@@ -21,7 +21,7 @@ use crate::geometry::{ChainNode, PolygonPath};
 use crate::handler::{PostStepEntry, DEFAULT_POST_STEP_CALLBACKS, EMPTY_POST_STEP};
 use crate::index::Proxy;
 use crate::math::{Rect, Vector2};
-use crate::solver::{BodyLanes, ContactConstraint, ContactScratch, SolverBody};
+use crate::solver::{BodyLanes, ContactConstraint, ContactScratch, PivotLanes, SolverBody};
 
 /// How many objects of each kind a world can hold (with the `alloc` feature).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -152,6 +152,8 @@ pub struct Storage<'a> {
     pub(crate) joint_pairs: ManagedSlice<'a, (u32, u32)>,
     /// The solver's joint rows (scratch); as long as `joints`.
     pub(crate) joint_rows: ManagedSlice<'a, JointRow>,
+    /// The plain pivots' lanes (scratch); as long as `joints`.
+    pub(crate) pivot_lanes: ManagedSlice<'a, PivotLanes>,
     /// The automatic index's sort order (scratch), one entry per body.
     pub(crate) sweep_order: ManagedSlice<'a, u32>,
     /// The solver's copy of each body during a step (scratch), one per body.
@@ -202,10 +204,10 @@ impl Storage<'_> {
         + size_of::<(u32, u32)>()
         + size_of::<ContactConstraint>()
         + size_of::<ContactScratch>();
-    /// Bytes per joint slot: the joint, its entry in the non-colliding pairs
-    /// and the solver's row for it.
+    /// Bytes per joint slot: the joint, its entry in the non-colliding pairs,
+    /// the solver's row for it and an eighth of a block of pivot lanes.
     pub const BYTES_PER_JOINT: usize =
-        size_of::<Slot<Joint>>() + size_of::<(u32, u32)>() + size_of::<JointRow>();
+        size_of::<Slot<Joint>>() + size_of::<(u32, u32)>() + size_of::<JointRow>() + size_of::<PivotLanes>();
     /// Bytes per post-step queue slot: the function and its key.
     pub const BYTES_PER_CALLBACK: usize = size_of::<PostStepEntry>();
     /// Bytes per event capacity: one slot in each of the six lists.
@@ -253,6 +255,7 @@ impl Storage<'_> {
             joints: ManagedSlice::Owned(filled(c.joints, "joint", || Slot::EMPTY)?),
             joint_pairs: ManagedSlice::Owned(filled(c.joints, "joint", || (0, 0))?),
             joint_rows: ManagedSlice::Owned(filled(c.joints, "joint row", || JointRow::EMPTY)?),
+            pivot_lanes: ManagedSlice::Owned(filled(c.joints, "pivot lanes", || [[0; 8]; 4])?),
             sweep_order: ManagedSlice::Owned(filled(c.bodies, "sweep order", || 0)?),
             solver_bodies: ManagedSlice::Owned(filled(c.bodies, "solver body", || SolverBody::EMPTY)?),
             solver_lanes: ManagedSlice::Owned(filled(c.bodies, "solver body", || BodyLanes::EMPTY)?),
@@ -329,6 +332,7 @@ pub struct WorldBuffers<
     joints: [Slot<Joint>; JOINTS],
     joint_pairs: [(u32, u32); JOINTS],
     joint_rows: [JointRow; JOINTS],
+    pivot_lanes: [PivotLanes; JOINTS],
     sweep_order: [u32; BODIES],
     solver_bodies: [SolverBody; BODIES],
     solver_lanes: [BodyLanes; BODIES],
@@ -374,6 +378,7 @@ impl<
             joints: [Slot::EMPTY; JOINTS],
             joint_pairs: [(0, 0); JOINTS],
             joint_rows: [JointRow::EMPTY; JOINTS],
+            pivot_lanes: [[[0; 8]; 4]; JOINTS],
             sweep_order: [0; BODIES],
             solver_bodies: [SolverBody::EMPTY; BODIES],
             solver_lanes: [BodyLanes::EMPTY; BODIES],
@@ -404,6 +409,7 @@ impl<
             joints: ManagedSlice::Borrowed(&mut self.joints[..]),
             joint_pairs: ManagedSlice::Borrowed(&mut self.joint_pairs[..]),
             joint_rows: ManagedSlice::Borrowed(&mut self.joint_rows[..]),
+            pivot_lanes: ManagedSlice::Borrowed(&mut self.pivot_lanes[..]),
             sweep_order: ManagedSlice::Borrowed(&mut self.sweep_order[..]),
             solver_bodies: ManagedSlice::Borrowed(&mut self.solver_bodies[..]),
             solver_lanes: ManagedSlice::Borrowed(&mut self.solver_lanes[..]),

@@ -26,7 +26,7 @@ use golden_scenes::{Outcome, SceneError};
 
 type Scene = (&'static str, fn() -> Result<Outcome, SceneError>, u64);
 
-const SCENES: [Scene; 7] = [
+const SCENES: [Scene; 8] = [
     ("core scene", golden_scenes::core_scene, golden_scenes::GOLDEN_CORE_SCENE),
     ("pyramid", golden_scenes::pyramid, golden_scenes::GOLDEN_PYRAMID),
     ("mixed scene", golden_scenes::mixed, golden_scenes::GOLDEN_MIXED),
@@ -34,6 +34,7 @@ const SCENES: [Scene; 7] = [
     ("every-shape scene", golden_scenes::shapes, golden_scenes::GOLDEN_SHAPES),
     ("compound-body scene", golden_scenes::compound, golden_scenes::GOLDEN_COMPOUND),
     ("banded-tower", golden_scenes::banded_tower, golden_scenes::GOLDEN_BANDED),
+    ("pivot net", golden_scenes::pivot_net, golden_scenes::GOLDEN_PIVOT_NET),
 ];
 
 #[entry]

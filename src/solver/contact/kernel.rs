@@ -190,13 +190,13 @@ impl<const W: usize> View<'_, W> {
 }
 
 /// A body's velocity lanes: v_x, v_y, ŵ.
-type Vel<const W: usize> = [L<W>; 3];
+pub(crate) type Vel<const W: usize> = [L<W>; 3];
 /// A body's motion since the step began: dp_x, dp_y, δ̂.
-type Pose<const W: usize> = [L<W>; 3];
+pub(crate) type Pose<const W: usize> = [L<W>; 3];
 
 /// Reads the velocity and motion of the bodies in `idx`'s lanes.
 #[inline(always)]
-fn gather<const W: usize>(bodies: &[BodyLanes], idx: L<W>) -> (Vel<W>, Pose<W>) {
+pub(crate) fn gather<const W: usize>(bodies: &[BodyLanes], idx: L<W>) -> (Vel<W>, Pose<W>) {
     // Eight lanes (the AVX2 kernels only, see `L`): whole records and a
     // transpose, where the loop below loads field by field into vector
     // inserts (measured with the products: large 20 2,400.5 M → 2,325.6 M
@@ -227,7 +227,7 @@ fn gather<const W: usize>(bodies: &[BodyLanes], idx: L<W>) -> (Vel<W>, Pose<W>) 
 
 /// Writes back the velocity of the bodies in `idx`'s lanes that `m` selects.
 #[inline(always)]
-fn scatter<const W: usize>(bodies: &mut [BodyLanes], idx: L<W>, v: &Vel<W>, m: M<W>) {
+pub(crate) fn scatter<const W: usize>(bodies: &mut [BodyLanes], idx: L<W>, v: &Vel<W>, m: M<W>) {
     // Without this barrier LLVM sinks the last velocity updates into the
     // per-lane stores below and computes them lane by lane in general-purpose
     // registers (measured: a third of the AVX2 sweep's multiplies). Only the

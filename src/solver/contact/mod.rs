@@ -21,7 +21,7 @@ mod kernel;
 mod prepare;
 mod store;
 
-pub(crate) use kernel::{Impacts, LaneParams, Restitute, SweepPass, WarmStart};
+pub(crate) use kernel::{gather, scatter, Impacts, LaneParams, Restitute, SweepPass, WarmStart};
 pub(crate) use prepare::prepare;
 pub(crate) use store::store;
 
