@@ -5,7 +5,7 @@
 //! The rows are scratch, as the contacts' constraints are: prepare builds one
 //! per joint whose bodies are there, in joint-slot order
 //! ([`Joint::prepare`](super::Joint)), the joint passes run over them densely,
-//! forward or in reverse, and the end of the step writes their impulses back
+//! in slot order, and the end of the step writes their impulses back
 //! into the joints ([`Joint::finish_step`](super::Joint)). A row carries the
 //! slots of its two bodies, so the passes never read a joint's slot. Nothing
 //! in a row outlives the step, so none of it is in the snapshot.

@@ -190,11 +190,11 @@ pub(crate) fn solve(
         for (sb, lane) in solver.bodies.iter_mut().zip(solver.lanes.iter_mut()).filter(|(sb, _)| sb.forced) {
             sb.add_force(lane);
         }
-        for_each_joint(solver, Sweep::Forward, |j, (_, la), (_, lb)| j.warm_start(la, lb));
+        for_each_joint(solver, |j, (_, la), (_, lb)| j.warm_start(la, lb));
         dispatch::run_pivots(solver, Pass::Warm);
         let count_totals = substep > 0;
         dispatch::run(solver, warm_start_direction(substep), &contact::WarmStart { count_totals });
-        for_each_joint(solver, Sweep::Forward, |j, a, b| j.solve(a, b, h, Bias::On));
+        for_each_joint(solver, |j, a, b| j.solve(a, b, h, Bias::On));
         dispatch::run_pivots(solver, Pass::Biased);
         if user {
             store_bodies(solver, bodies);
@@ -208,13 +208,18 @@ pub(crate) fn solve(
         // Relax: one sweep in the sub-step's direction; the last sub-step
         // adds a forward sweep, which drains what the push-out left in the
         // velocities the step ends with.
-        // The joints' relax pass: the pivot lanes' colours in order, then
-        // the other joints in reverse slot order.
+        // The joints' relax pass runs in the order of their biased pass:
+        // the joints one at a time in slot order, then the pivot lanes'
+        // colours. Run in the reverse order, it fed some nets energy: a
+        // 24 × 24 net of pivots hung by its corners, its horizontal or its
+        // vertical joints made first, gained 116 to 161 × its weight × 1 m
+        // in 300 steps, its fastest body at up to 172 m/s (see
+        // `docs/design/solver-lanes.md` §21 and `tests/constraints.rs`).
         if solver.pivot_runs.count > 0 {
             dispatch::run_pivots(solver, Pass::Pose);
-            dispatch::run_pivots(solver, Pass::Relax);
         }
-        for_each_joint(solver, Sweep::Reverse, |j, a, b| j.solve(a, b, h, Bias::Off));
+        for_each_joint(solver, |j, a, b| j.solve(a, b, h, Bias::Off));
+        dispatch::run_pivots(solver, Pass::Relax);
         contact_sweep(solver, &params, Bias::Off, sweep);
         if substep + 1 == n {
             contact_sweep(solver, &params, Bias::Off, Sweep::Forward);
@@ -307,16 +312,13 @@ fn reload_bodies(solver: &mut Solver<'_>, bodies: &Arena<'_, Body>) {
 /// A solver body with its lanes.
 type BodyPair<'b> = (&'b mut SolverBody, &'b mut BodyLanes);
 
-/// Runs `f` on every joint row with its two solver bodies and their lanes, in
-/// joint-slot order (`Sweep::Forward`) or the reverse. A joint to a world
+/// Runs `f` on every joint row solved one at a time (not in the pivot lanes)
+/// with its two solver bodies and their lanes, in joint-slot order (every
+/// joint pass: see the relax pass in [`solve`]). A joint to a world
 /// point gets a static stand-in body for B. The joints write the lanes as the
 /// contact kernels do; the next [`SolverBody::pull`] carries what they did
 /// into the `Scalar` velocity.
-fn for_each_joint(
-    solver: &mut Solver<'_>,
-    order: Sweep,
-    mut f: impl FnMut(&mut JointRow, BodyPair<'_>, BodyPair<'_>),
-) {
+fn for_each_joint(solver: &mut Solver<'_>, mut f: impl FnMut(&mut JointRow, BodyPair<'_>, BodyPair<'_>)) {
     let bodies: &mut [SolverBody] = &mut solver.bodies;
     let lanes: &mut [BodyLanes] = &mut solver.lanes;
     let rows: &mut [JointRow] = &mut solver.joints;
@@ -340,10 +342,7 @@ fn for_each_joint(
             f(row, (a, la), (b, lb));
         }
     };
-    match order {
-        Sweep::Forward => rows.iter_mut().for_each(&mut visit),
-        Sweep::Reverse => rows.iter_mut().rev().for_each(&mut visit),
-    }
+    rows.iter_mut().for_each(&mut visit);
 }
 
 /// Once per step: each joint's row (masses, softness, lane formats), in

@@ -15,15 +15,14 @@
 //! the lane store, stays with the other joints, solved one at a time in slot
 //! order.
 //!
-//! **Order.** The warm start and the biased iteration run the joints one at
-//! a time in slot order and then the colours 0 to 31; the relax iteration
-//! runs the colours 0 to 31 again (as Box2D v3 runs its colours in every
-//! stage) and then the other joints in reverse slot order. The order is a
-//! function of the joints, their bodies and the bodies' types, all in the
-//! snapshot.
+//! **Order.** Every joint pass (the warm start, the biased iteration and the
+//! relax iteration) runs the joints one at a time in slot order and then the
+//! colours 0 to 31, as Box2D v3 runs its colours in every stage. The order
+//! is a function of the joints, their bodies and the bodies' types, all in
+//! the snapshot.
 //!
 //! The relax colours once ran from 31 down to 0, the exact reverse of the
-//! biased iteration, as the rows one at a time do. On Box2D's joint grid
+//! biased iteration, as the rows one at a time then did. On Box2D's joint grid
 //! (10,000 circles, 19,800 pivots, 4 colours a body) that order fed energy
 //! into the net: after 150 steps 8,500 bodies moved faster than 20 m/s, the
 //! fastest at 250 m/s, more than five times what a fall from the net's

@@ -36,7 +36,7 @@ pub const GOLDEN_COMPOUND: u64 = 0x3637_91c8_065b_3586;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_BANDED: u64 = 0x9d39_ab87_8b56_d6b2;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_PIVOT_NET: u64 = 0xa8e0_c6b2_659c_61c0;
+pub const GOLDEN_PIVOT_NET: u64 = 0xcd5c_0abd_d93b_361e;
 
 /// Steps of the core scene.
 pub const CORE_STEPS: u32 = 600;
