@@ -8,7 +8,7 @@ use crate::body::Body;
 use crate::error::Error;
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rot, Vector2};
-use crate::solver::{JointLanes, JointMasses, Softness, SolverBody};
+use crate::solver::{JointLanes, JointMasses, JointStep, LaneSoft, Softness, SolverBody};
 
 use super::def::validate_motor;
 use super::row::{ConstraintKind, ConstraintRow, JointRow, RowSolve, SpringRow};
@@ -115,7 +115,8 @@ impl Joint {
     /// Once per step: the joint's row for the sub-steps, in slot `slot`:
     /// masses, the step's joint softness (see `StepContext::joint_softness`),
     /// the impulses in lane formats and the pose of the first sub-step. `sa`,
-    /// `sb` are the solver's copies of `a` and `b`; `h` is the sub-step.
+    /// `sb` are the solver's copies of `a` and `b`; `step` holds the softness
+    /// and the sub-step.
     ///
     /// Written into `row` in place (whatever it held): a constraint's lanes
     /// are some 280 bytes, and building the row and returning it cost three
@@ -129,10 +130,9 @@ impl Joint {
         b: &Body,
         sa: &SolverBody,
         sb: &SolverBody,
-        soft: Softness,
-        h: Scalar,
-        inv_h: Scalar,
+        step: &JointStep,
     ) {
+        let h = step.h;
         let (ma, ia) = crate::solver::inverse_mass(a);
         let (mb, ib) = crate::solver::inverse_mass(b);
         self.step_linear = Vector2::ZERO;
@@ -153,7 +153,7 @@ impl Joint {
                 step_linear: Vector2::ZERO,
             })
         };
-        let mut soft = soft;
+        let mut soft = step.lane_soft;
         let (mut max_impulse, mut spin_damping) = (None, None);
         let (kind, motor, limits) = match self.def.kind {
             JointKind::Spring { stiffness, rest_length } => {
@@ -173,7 +173,7 @@ impl Joint {
             JointKind::Target { hertz, damping_ratio, max_force } => {
                 // Its own spring, discretised for the sub-step, in place of the
                 // joints' stiff position correction.
-                soft = Softness::new(hertz, damping_ratio, h);
+                soft = LaneSoft::new(Softness::new(hertz, damping_ratio, h));
                 max_impulse = Some(max_force * h);
                 spin_damping = Some(Softness::new(TARGET_SPIN_HERTZ, TARGET_SPIN_DAMPING_RATIO, h));
                 (ConstraintKind::Target, None, None)
@@ -215,7 +215,7 @@ impl Joint {
         if let RowSolve::Constraint(c) = &mut row.solve {
             c.kind = kind;
             c.reference = self.reference;
-            c.lanes.prepare(&masses, sa, sb, soft, inv_h, self.impulse, angular);
+            c.lanes.prepare(&masses, sa, sb, soft, step.inv_h, self.impulse, angular);
             c.measure(sa, sb);
         }
     }

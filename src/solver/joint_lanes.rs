@@ -156,7 +156,7 @@ pub(crate) struct LaneSoft {
 }
 
 impl LaneSoft {
-    pub(super) fn new(s: Softness) -> Self {
+    pub(crate) fn new(s: Softness) -> Self {
         Self {
             rate: from_scalar(s.bias_rate, FQ, 1 << 21),
             mass_scale: from_scalar(s.mass_scale, FU, 1),
@@ -175,6 +175,25 @@ impl LaneSoft {
             }
             Bias::Off => (0, ONE_U, 0),
         }
+    }
+}
+
+/// What every joint's prepare shares in a step: the joints' softness and the
+/// sub-step, in `Scalar` and in lane formats, converted once a step rather
+/// than once a joint.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct JointStep {
+    /// The joints' soft position correction, in lane formats.
+    pub(crate) lane_soft: LaneSoft,
+    /// The sub-step (s).
+    pub(crate) h: Scalar,
+    /// 1/h (Q22.10).
+    pub(crate) inv_h: i32,
+}
+
+impl JointStep {
+    pub(crate) fn new(soft: Softness, h: Scalar, inv_h: Scalar) -> Self {
+        Self { lane_soft: LaneSoft::new(soft), h, inv_h: from_scalar(inv_h, FQ, 1 << 21) }
     }
 }
 
@@ -303,7 +322,8 @@ impl Side {
             rho: from_scalar(mass_s, FU, 1),
             // Each factor saturates in Scalar only beyond the bound of 8.
             kappa: from_scalar((inertia_s * r) * r, FK, 8).max(0),
-            alpha: from_scalar((inv_inertia * inv_k) * r, FAL, 255).max(0),
+            // 0 without angular rows (`inv_k` = 0), which every plain pivot is.
+            alpha: if inv_k == ZERO { 0 } else { from_scalar((inv_inertia * inv_k) * r, FAL, 255).max(0) },
             iota: from_scalar(body.inv_radius, FA, 511),
             r: [0; 2],
             rh: [0; 2],
@@ -493,8 +513,8 @@ impl JointLanes {
         m: &JointMasses,
         a: &SolverBody,
         b: &SolverBody,
-        soft: Softness,
-        inv_h: Scalar,
+        soft: LaneSoft,
+        inv_h: i32,
         impulse: Vector2,
         angular: [Scalar; 3],
     ) {
@@ -514,8 +534,8 @@ impl JointLanes {
         let (na, nb) = ((ma * inv_s, ia * inv_s), (mb * inv_s, ib * inv_s));
         j.side = [Side::new(m.anchors[0], na, ia, a, inv_k), Side::new(anchor_b, nb, ib, b, inv_k)];
         j.m = [0; 3];
-        j.soft = LaneSoft::new(soft);
-        j.inv_h = from_scalar(inv_h, FQ, 1 << 21);
+        j.soft = soft;
+        j.inv_h = inv_h;
         j.base = base;
         // `d` is set by the pose below, `lambda` after it; the rest as INACTIVE.
         j.axis = Self::INACTIVE.axis;

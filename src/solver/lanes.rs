@@ -98,7 +98,7 @@ pub(crate) fn from_scalar(x: Scalar, f: u32, bound: i64) -> i32 {
     let bits = x.to_bits();
     let rounded = (bits >> shift) + ((bits >> (shift - 1)) & 1);
     let hi = (bound << f).min(i64::from(i32::MAX));
-    rounded.clamp(-hi, hi) as i32
+    sym(rounded, hi) as i32
 }
 
 /// A lane of `f` fractional bits as a `Scalar` (exact).

@@ -115,7 +115,7 @@ pub(crate) use pivot_lanes::PivotRuns;
 
 pub(crate) use body::{angular_speed_limit, inverse_mass};
 use contact::LaneParams;
-pub(crate) use joint_lanes::{JointLanes, JointMasses};
+pub(crate) use joint_lanes::{JointLanes, JointMasses, JointStep, LaneSoft};
 use managed::ManagedSlice;
 pub(crate) use softness::Softness;
 pub(crate) use sweep::{Bias, Sweep};
@@ -361,6 +361,7 @@ fn prepare_joints(
     let lanes: &mut [BodyLanes] = &mut solver.lanes;
     let rows: &mut [JointRow] = &mut solver.joints;
     let mut colouring = pivot_lanes::Colouring::new(&solver.pivots);
+    let step = JointStep::new(ctx.joint_softness, ctx.h, ctx.inv_h);
     let mut count = 0;
     for (i, j) in joints.iter_mut() {
         let b = j.def.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
@@ -371,7 +372,7 @@ fn prepare_joints(
         // The rows are as many as the joint slots, so one is always free.
         match (a, sa, rows.get_mut(count)) {
             (Some(a), Some(sa), Some(row)) => {
-                j.prepare(row, i.index(), a, b, sa, sb, ctx.joint_softness, ctx.h, ctx.inv_h);
+                j.prepare(row, i.index(), a, b, sa, sb, &step);
                 colouring.colour(row, lanes);
                 count += 1;
             }
