@@ -137,11 +137,18 @@ pub(crate) fn sym(x: i64, bound: i64) -> i64 {
     if bound >= 1 << 62 {
         return x.clamp(-bound, bound);
     }
-    if x.wrapping_add(bound).cast_unsigned() <= bound.cast_unsigned() << 1 {
+    if within(x, bound) {
         x
     } else {
         clamp_cold(x, bound)
     }
+}
+
+/// `-bound ≤ x ≤ bound`, for `0 ≤ bound < 2⁶²`, as [`sym`] tests it: one add
+/// and one unsigned comparison.
+#[inline(always)]
+pub(crate) fn within(x: i64, bound: i64) -> bool {
+    x.wrapping_add(bound).cast_unsigned() <= bound.cast_unsigned() << 1
 }
 
 #[cold]
