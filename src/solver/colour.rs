@@ -195,11 +195,10 @@ pub(crate) fn build(
         // The first pass checked both handles (a coloured arbiter's bodies
         // are live): by slot, without the tag and generation tests again.
         let (ia, ib) = (arb.body_a.index(), arb.body_b.index());
-        let (Some(a), Some(b)) = (bodies.get_at(ia), bodies.get_at(ib)) else { continue };
         let sbodies: &[SolverBody] = &solver.bodies;
         let (Some(sa), Some(sb)) = (sbodies.get(ia as usize), sbodies.get(ib as usize)) else { continue };
         let Some(blk) = block_of(&mut solver.constraints, lane) else { continue };
-        scratch.mass = contact::prepare(arb, (ia, ib), (a, b), (sa, sb), scales, blk, lane % LANES);
+        scratch.mass = contact::prepare(arb, (ia, ib), (sa, sb), scales, blk, lane % LANES);
     }
 }
 
