@@ -308,7 +308,10 @@ struct Side {
 
 impl Side {
     /// `mass_s`, `inertia_s` are (1/m)/s and (1/I)/s, which the point
-    /// constraint's mass needs too.
+    /// constraint's mass needs too. Inlined into the joint prepare, which
+    /// builds the two sides straight into its row (joint 10: 935.5 →
+    /// 926.8 M instructions, the same bits).
+    #[inline(always)]
     fn new(
         anchor: Vector2,
         (mass_s, inertia_s): (Scalar, Scalar),
