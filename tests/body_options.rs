@@ -576,6 +576,20 @@ fn a_snapshot_with_bad_body_options_is_rejected() {
         assert!(matches!(w.restore(&snap), Err(Error::InvalidSnapshot { .. })), "{what} accepted");
         assert_eq!(w.state_hash(), before, "{what}: the world changed");
     }
+    // The fixed-rotation bit on a body that spins: the world never writes one.
+    let mut spinning = world();
+    spinning.add_body(BodyDef::circle(s(0.5)).angular_velocity(s(1.0))).expect("b");
+    let mut spun = vec![0u8; spinning.snapshot_len()];
+    spinning.snapshot(&mut spun).expect("fits");
+    w.restore(&spun).expect("a free body may spin");
+    let spin_hash = w.state_hash();
+    spun[rec + 25] |= 0x40;
+    reseal(&mut spun);
+    match w.restore(&spun) {
+        Err(Error::InvalidSnapshot { what }) => assert!(what.contains("fixed-rotation"), "{what}"),
+        other => panic!("a spinning fixed-rotation body accepted: {other:?}"),
+    }
+    assert_eq!(w.state_hash(), spin_hash, "the world changed");
     // A valid edit: the fixed-rotation bit and a filter restore as written.
     let mut snap = good.clone();
     snap[rec + 25] |= 0x40;

@@ -322,6 +322,12 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
                 return Err(invalid("a body's properties index is out of range"));
             }
             check_motion(&r)?;
+            // The world stops a fixed-rotation body's spin whenever it locks
+            // it, and the solver reads the spin from both the body and its
+            // own copy, so a snapshot that says otherwise is not one it wrote.
+            if r.angular_velocity != ZERO && l.props(r.index())?.fixed_rotation {
+                return Err(invalid("a fixed-rotation body that spins"));
+            }
             live = live.saturating_add(1);
         } else if r.out_of_bounds() {
             return Err(invalid("flags on a free slot"));

@@ -310,10 +310,12 @@ fn put(blk: &mut Block, fi: usize, l: usize, x: i64) {
 struct Shared {
     /// Each body's velocity and angular velocity at the start of the step,
     /// from the solver's copy, which the step has just loaded from the
-    /// bodies (a fixed-rotation body's spin is 0 in both), so prepare reads
-    /// no `Body`: colouring no longer looks the bodies up a second time
-    /// (large scene, 20 steps: 2,139.1 → 2,129.9 M instructions and 36.74 →
-    /// 36.38 M first-level data-cache misses in cachegrind; the same bits).
+    /// bodies (a fixed-rotation body's spin is 0 in both: the world stops it
+    /// when it locks the body and `restore` refuses a snapshot that spins
+    /// one), so prepare reads no `Body`: colouring no longer looks the
+    /// bodies up a second time (large scene, 20 steps: 2,139.1 → 2,129.9 M
+    /// instructions and 36.74 → 36.38 M first-level data-cache misses in
+    /// cachegrind; the same bits).
     vel: [(Vector2, Scalar); 2],
     side_a: Side,
     side_b: Side,
