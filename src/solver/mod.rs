@@ -28,7 +28,7 @@
 //!    `contact::kernel`'s `DEEP_OVERLAP`),
 //! 4. integrates positions,
 //! 5. relaxes: one sweep without the position bias, so the push-out does not
-//!    leave energy behind; the last sub-step adds one more forward sweep.
+//!    leave energy behind (Box2D's one relax iteration).
 //!
 //! Both sweeps of a sub-step run in the same direction, in colour order or in
 //! reverse (see **Order** below), and the direction changes every two
@@ -44,8 +44,12 @@
 //! a 20-box stack topple (the first point always takes more). Two relax sweeps in
 //! every sub-step (12 sweeps a step) were an earlier design; one sweep (8,
 //! Box2D's count) is as good everywhere except a 4-box column recovering from
-//! 25 % overlap, which ends steps at 3.6 m/s, above the 3 m/s push speed; the
-//! extra forward sweep in the last sub-step (9 sweeps) brings that to 2.98 m/s.
+//! 25 % overlap, which ends steps at 3.6 m/s, above the 3 m/s push speed; an
+//! extra forward sweep in the last sub-step (9 sweeps) brought that to 2.98
+//! m/s. Once overlaps deeper than 10 cm were pushed out by motion, that column
+//! stayed under 1.6 m/s with Box2D's one relax sweep a sub-step and every
+//! other threshold held, so the extra sweep went (a step's 15 passes over the
+//! contacts became 14, −3 % of the instructions of the contact scenes).
 //! The biased sweeps used to run forward in every sub-step (only the relax
 //! alternated): 7 forward sweeps a step against 2 in reverse, and Box2D v3's
 //! 100-row large_pyramid ended 88 mm off centre at the top (80 rows 53 mm, 90
@@ -205,9 +209,14 @@ pub(crate) fn solve(
         for (sb, lane) in solver.bodies.iter_mut().zip(solver.lanes.iter_mut()).filter(|(sb, _)| sb.moves) {
             sb.integrate(h, vmax, lane);
         }
-        // Relax: one sweep in the sub-step's direction; the last sub-step
-        // adds a forward sweep, which drains what the push-out left in the
-        // velocities the step ends with.
+        // Relax: one sweep in the sub-step's direction, as Box2D's one relax
+        // iteration. The last sub-step had a second, forward, sweep: it kept
+        // a column pushed out of 25 % overlap under the push speed (3.60 m/s
+        // without it) before deep overlaps were pushed out by motion. Since
+        // then every quality threshold holds without it (that column's
+        // fastest 1.58 m/s) and a step makes 14 passes over the contacts
+        // instead of 15: −3 % of the instructions of the contact scenes
+        // (`docs/design/solver-lanes.md` §23).
         // The joints' relax pass runs in the order of their biased pass:
         // the joints one at a time in slot order, then the pivot lanes'
         // colours. Run in the reverse order, it fed some nets energy: a
@@ -221,9 +230,6 @@ pub(crate) fn solve(
         for_each_joint(solver, |j, a, b| j.solve(a, b, h, Bias::Off));
         dispatch::run_pivots(solver, Pass::Relax);
         contact_sweep(solver, &params, Bias::Off, sweep);
-        if substep + 1 == n {
-            contact_sweep(solver, &params, Bias::Off, Sweep::Forward);
-        }
     }
     dispatch::run(solver, Sweep::Forward, &contact::Restitute { params: &params });
     solver.store_contacts(arbiters.live_mut());
