@@ -21,6 +21,8 @@ mod kernel;
 mod prepare;
 mod store;
 
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+pub(crate) use kernel::push_apart;
 pub(crate) use kernel::{gather, scatter, Impacts, LaneParams, Restitute, SweepPass, WarmStart};
 pub(crate) use prepare::prepare;
 pub(crate) use store::store;
