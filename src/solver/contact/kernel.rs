@@ -680,7 +680,7 @@ pub(crate) fn sweep_and_push<const W: usize, const TWO: bool>(
 ) {
     let deep = sweep::<W, TWO>(blk, base, active, bodies, params, bias, reverse);
     if deep.any() {
-        push_apart_apart::<W, TWO>(blk, base, bodies, deep, params, reverse);
+        push_apart_out_of_line::<W, TWO>(blk, base, bodies, deep, params, reverse);
     }
 }
 
@@ -692,7 +692,7 @@ pub(crate) fn sweep_and_push<const W: usize, const TWO: bool>(
 /// instructions, the same bits; the scenes without deep points within
 /// ±0.2 %).
 #[inline(never)]
-fn push_apart_apart<const W: usize, const TWO: bool>(
+fn push_apart_out_of_line<const W: usize, const TWO: bool>(
     blk: &mut Block,
     base: usize,
     bodies: &mut [BodyLanes],
