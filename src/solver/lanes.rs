@@ -376,6 +376,12 @@ impl<const W: usize> M<W> {
         }
         Self(r)
     }
+    /// True if every lane is set: used only to choose how to store a result
+    /// (the same values either way), never to choose the result.
+    #[inline(always)]
+    pub(crate) fn every(self) -> bool {
+        self.0.iter().fold(-1, |a, &m| a & m) == -1
+    }
     /// True if any lane is set: used only to skip work whose results every
     /// lane would discard, never to choose a result.
     #[inline(always)]

@@ -293,10 +293,11 @@ impl<const W: usize> View<'_, W> {
         L(r)
     }
 
-    /// Stores the lanes of `x` that `m` selects.
+    /// Stores the lanes of `x` that `m` selects: a whole block as it is, not
+    /// as a masked store (see the contact kernels' `View::st`).
     #[inline(always)]
     fn st(&mut self, fi: usize, x: L<W>, m: M<W>) {
-        let x = self.ld(fi).select(m, x);
+        let x = if m.every() { x } else { self.ld(fi).select(m, x) };
         if let Some(row) = self.blk.get_mut(fi) {
             for (i, &x) in x.0.iter().enumerate() {
                 row[(self.base + i) % LANES] = x;
