@@ -44,7 +44,7 @@ use crate::body::BodyHandle;
 use crate::error::Error;
 use crate::limits::{check_friction, check_restitution};
 use crate::math::scalar::{Scalar, ZERO};
-use crate::math::Vector2;
+use crate::math::{Rot, Vector2};
 
 /// The manual's arbiter states.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -94,13 +94,18 @@ pub struct ContactPoint {
     pub total_normal_impulse: Scalar,
     /// Largest single normal impulse in the step (N·s), e.g. for impact sounds.
     pub max_normal_impulse: Scalar,
-    // Offsets of the point from each centre of mass (derived, per step).
+    // Offsets of the point from each centre of mass when the manifold was
+    // computed (derived, kept with it while it is recycled; in the snapshot
+    // then, see `collision::recycle`).
     pub(crate) anchor_a: Vector2,
     pub(crate) anchor_b: Vector2,
     // The approach speed along the normal at the start of the step, Q16.16
-    // (derived, per step, for the contact hit event; in what was padding, so
-    // the arbiter stays 256 bytes).
+    // (derived, per step, for the contact hit event; in what was padding).
     pub(crate) approach: i32,
+    /// The separation when the manifold was last computed (m): a recycled
+    /// point's separation is this plus how far its anchored points moved
+    /// apart along the normal since. State while the manifold is kept.
+    pub(crate) base_separation: Scalar,
 }
 
 /// The collision state of a pair of bodies.
@@ -113,7 +118,7 @@ pub struct Arbiter {
     pub(crate) state: ArbiterState,
     /// The steps since separation (bits 0–11, see [`Arbiter::steps_separated`])
     /// and the chain link of a pair with a chain (bits 12–31, 0 otherwise;
-    /// part of the key), packed so that the arbiter stays 256 bytes. State:
+    /// part of the key), packed into one word. State:
     /// in the snapshot and the hash (the link where a pair has a chain).
     pub(crate) steps_and_link: u32,
     pub(crate) normal: Vector2,
@@ -127,10 +132,20 @@ pub struct Arbiter {
     /// [`crate::events`]; for a sensor pair unused, its `Contact` state
     /// means overlapping). Bits 1–3 and 4–6: the index of the shape on body
     /// A and on body B (0 for a body's first shape; part of the key, see
-    /// [`Arbiter::key`]). One byte, so the arbiter stays 256 bytes. State:
+    /// [`Arbiter::key`]). Bit 7: the kept manifold is valid. One byte. State:
     /// in the snapshot and the hash (the shape indices where any is not 0).
     pub(crate) flags: u8,
+    /// Body A's and body B's rotations when the manifold was last computed
+    /// (valid while [`RECYCLE_FLAG`] is set; with the normal, the points'
+    /// ids, anchors and base separations, the kept manifold, which is state:
+    /// in the snapshot and the hash while the world recycles manifolds).
+    pub(crate) rot_a0: Rot,
+    pub(crate) rot_b0: Rot,
 }
+
+/// [`Arbiter::flags`]: the manifold cache (`rot_a0`, `rot_b0`, the points'
+/// anchors and base separations) is valid.
+pub(crate) const RECYCLE_FLAG: u8 = 1 << 7;
 
 /// [`Arbiter::flags`]: touching at the end of the last step.
 const TOUCHING_FLAG: u8 = 1;
@@ -175,12 +190,15 @@ impl Arbiter {
             anchor_a: Vector2::ZERO,
             anchor_b: Vector2::ZERO,
             approach: 0,
+            base_separation: ZERO,
         }; 2],
         count: 0,
         friction: ZERO,
         restitution: ZERO,
         solve: false,
         flags: 0,
+        rot_a0: Rot::IDENTITY,
+        rot_b0: Rot::IDENTITY,
     };
 
     /// The canonical key of the arbiter: (lower body slot, higher body slot,
@@ -226,6 +244,26 @@ impl Arbiter {
     pub(crate) fn set_shapes(&mut self, a: u32, b: u32) {
         let (a, b) = ((a & MAX_SHAPE_INDEX) as u8, (b & MAX_SHAPE_INDEX) as u8);
         self.flags = (self.flags & TOUCHING_FLAG) | (a << 1) | (b << (1 + SHAPE_BITS));
+    }
+
+    /// Whether the manifold cache (`rot_a0`, `rot_b0`, the normal, the
+    /// points' ids, anchors and base separations) holds the pair's last
+    /// computed manifold (see `collision::recycle`).
+    #[inline]
+    pub(crate) fn has_manifold(&self) -> bool {
+        self.flags & RECYCLE_FLAG != 0
+    }
+
+    /// Marks the manifold cache valid or not.
+    #[inline]
+    pub(crate) fn set_has_manifold(&mut self, on: bool) {
+        self.flags = (self.flags & !RECYCLE_FLAG) | if on { RECYCLE_FLAG } else { 0 };
+    }
+
+    /// Drops the manifold cache: the next step computes the pair's manifold.
+    #[inline]
+    pub(crate) fn forget_manifold(&mut self) {
+        self.set_has_manifold(false);
     }
 
     /// Sets whether the bodies touched at the end of the step.
@@ -528,8 +566,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn an_arbiter_is_256_bytes_and_packs_its_link_with_the_step_count() {
-        assert_eq!(core::mem::size_of::<Arbiter>(), 256);
+    fn an_arbiter_is_304_bytes_and_packs_its_link_with_the_step_count() {
+        // 256 before manifolds were kept: the two rotations and two base
+        // separations add 48.
+        assert_eq!(core::mem::size_of::<Arbiter>(), 304);
         let mut a = Arbiter::EMPTY;
         a.set_steps_and_link(3, MAX_LINK);
         assert_eq!((a.steps_separated(), a.link()), (3, MAX_LINK));

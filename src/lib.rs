@@ -142,6 +142,7 @@
 //! | joints | lengths ≤ 1,024 m, stiffness ≤ 1e6 N/m, damping ≤ 1e5 N·s/m, motor speed ≤ ±512 rad/s; a target joint's frequency in (0, 1,000] Hz, damping ratio ≤ 100, force ≤ 1.6e9 N ([`limits`]) | spring forces exact; explicit springs stable |
 //! | force generators | ±16,384 m/s² per component ([`limits::MAX_ACCELERATION`]), ±1.6e9 N ([`limits::MAX_FORCE`]), points within ±2^20 m | momentum after forces in range |
 //! | arbiter persistence | 0 – 256 steps ([`limits::MAX_ARBITER_PERSISTENCE`]) | separated arbiters expire |
+//! | contact recycle distance | 0 – 0.25 m, default 0.05 ([`limits::MAX_CONTACT_RECYCLE_DISTANCE`]) | kept manifolds stay close to computed ones |
 //! | speed | ≤ 2,048 m/s configurable, default 400 ([`WorldDef::max_linear_speed`]) | squared speeds exact |
 //! | spin | ≤ 256 rad/s, default 200, and ≤ π/4 per step | angular momentum in range |
 //! | time step | [2^-16, 0.25] s ([`MIN_TIME_STEP`], [`MAX_TIME_STEP`]) | bounded motion per step; 1/sub-step ≤ 2^20 per second |

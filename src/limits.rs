@@ -68,6 +68,16 @@ pub const MAX_RESTITUTION: Scalar = crate::math::scalar::ONE;
 /// steps, so nothing is lost by the bound.
 pub const MAX_ARBITER_PERSISTENCE: u32 = 256;
 
+/// The default [`WorldDef::contact_recycle_distance`](crate::WorldDef::contact_recycle_distance):
+/// 0.05 m, Box2D v3's (ten times its 5 mm linear slop).
+pub const DEFAULT_CONTACT_RECYCLE_DISTANCE: Scalar = Scalar::lit("0.05");
+
+/// The largest [`WorldDef::contact_recycle_distance`](crate::WorldDef::contact_recycle_distance):
+/// 0.25 m, five times the default. A manifold kept over more relative motion
+/// than that misses new contact points (a box tipping onto a corner) for
+/// longer than a game would accept.
+pub const MAX_CONTACT_RECYCLE_DISTANCE: Scalar = Scalar::lit("0.25");
+
 /// Largest acceleration a built-in force generator applies, per component,
 /// m/s² (2^14 ≈ 1,670 g): [`GravityForceGenerator`](crate::GravityForceGenerator)'s
 /// gravity and [`GravityToPointForceGenerator`](crate::GravityToPointForceGenerator)'s

@@ -104,6 +104,11 @@ pub struct StepReport {
     pub continuous_sweeps: u32,
     /// Fast bodies continuous collision put back to their time of impact.
     pub continuous_hits: u32,
+    /// Touching pairs whose manifold carried on from the previous step
+    /// instead of being computed (see
+    /// [`WorldDef::contact_recycle_distance`](crate::WorldDef::contact_recycle_distance);
+    /// Box2D's `recycledContactCount`).
+    pub manifolds_recycled: u32,
     /// Events left out because their list was full
     /// ([`Capacities::events`](crate::Capacities::events); see
     /// [`crate::events`]), all lists together.
@@ -144,6 +149,8 @@ pub(crate) struct StepContext {
     pub(crate) restitution_threshold: Scalar,
     /// Steps an arbiter outlives the contact.
     pub(crate) arbiter_persistence: u32,
+    /// [`WorldDef::contact_recycle_distance`](crate::WorldDef::contact_recycle_distance), m.
+    pub(crate) recycle_distance: Scalar,
     /// A full pair or arbiter store fails the step instead of dropping pairs.
     pub(crate) strict_capacity: bool,
 }
@@ -182,6 +189,7 @@ impl StepContext {
             push_speed: def.contact_push_speed,
             restitution_threshold: def.restitution_threshold,
             arbiter_persistence: def.arbiter_persistence,
+            recycle_distance: def.contact_recycle_distance,
             strict_capacity: def.strict_capacity,
         })
     }
@@ -213,7 +221,7 @@ pub(crate) fn run(ctx: &StepContext, p: StepParts<'_, '_>) -> Result<StepReport,
     p.events.clear();
     force::apply(ctx, p.bodies, p.generators);
     let candidates = p.broad_phase.candidates(found.count);
-    let skipped = collision::update_arbiters(
+    let updated = collision::update_arbiters(
         ctx,
         candidates,
         p.bodies,
@@ -235,7 +243,8 @@ pub(crate) fn run(ctx: &StepContext, p: StepParts<'_, '_>) -> Result<StepReport,
         candidate_pairs: count(found.count),
         arbiters: count(p.arbiters.len()),
         pairs_dropped: count(found.dropped),
-        arbiters_dropped: count(skipped),
+        arbiters_dropped: count(updated.skipped),
+        manifolds_recycled: count(updated.recycled),
         continuous_sweeps: ccd.sweeps,
         continuous_hits: ccd.hits,
         events_dropped: p.events.dropped,

@@ -553,9 +553,10 @@ fn a_snapshot_with_bad_body_options_is_rejected() {
     a.add_body(BodyDef::circle(s(0.5))).expect("b");
     let mut good = vec![0u8; a.snapshot_len()];
     a.snapshot(&mut good).expect("fits");
-    // The first properties record: after the framing (16), the world (104) and
-    // the record count (4).
-    let rec = 16 + 104 + 4;
+    // The first properties record: after the framing (16), the world (112:
+    // step count 8, settings 96 with the contact recycle distance, paths
+    // checksum 8) and the record count (4).
+    let rec = 16 + 112 + 4;
     assert_eq!(good.len(), rec + PROPS_RECORD + 12 + 64 + 12 + 4 + 12 + 8, "one record of each");
     let edits: [(usize, Vec<u8>, &str); 8] = [
         (rec, vec![4], "an unknown shape kind"),

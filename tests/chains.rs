@@ -3,6 +3,7 @@
 //! catching; their mid-phase, queries, continuous collision, snapshots and
 //! bad input.
 
+use arphysics::snapshot::ARBITER_MANIFOLDS;
 use arphysics::{
     BodyDef, BodyHandle, Capacities, Capsule, ChainPath, Error, GravityForceGenerator, PolygonPath,
     QueryFilter, QueryShape, Rect, Scalar, Transform, Vector2, World, WorldDef,
@@ -358,11 +359,15 @@ fn a_world_without_chains_encodes_as_before() {
     assert!(w.arbiters().count() == 1 && w.arbiters().all(|a| a.link() == 0));
     let mut snap = vec![0u8; w.snapshot_len()];
     let n = w.snapshot(&mut snap).expect("snapshot");
-    // header 16, world 104, props count and 2 props, body alloc and 2 bodies,
-    // generator alloc and 1 gravity slot, arbiter count and 1 arbiter,
-    // joint alloc, trailer.
-    let expected = 16 + 104 + 4 + 2 * 118 + 12 + 2 * 64 + 12 + (9 + 16 + 1) + 4 + 58 + 12 + 8;
+    // header 16, world 112, props count and 2 props, body alloc and 2 bodies,
+    // generator alloc and 1 gravity slot, arbiter count and 1 arbiter, no
+    // link words, then (the default world recycles contacts) the arbiter's
+    // 128-byte manifold record, joint alloc, trailer.
+    let count_at = 16 + 112 + 4 + 2 * 118 + 12 + 2 * 64 + 12 + (9 + 16 + 1);
+    let expected = count_at + 4 + 58 + 128 + 12 + 8;
     assert_eq!(n, expected);
+    let count = u32::from_le_bytes(snap[count_at..count_at + 4].try_into().expect("4 bytes"));
+    assert_eq!(count, 1 | ARBITER_MANIFOLDS, "the links bit (31) clear, the manifolds bit (30) set");
 }
 
 #[test]

@@ -5,7 +5,7 @@
 //! chains keeps its encoding.
 
 use arphysics::geometry::{compound_mass, MassPart};
-use arphysics::snapshot::TRAILER;
+use arphysics::snapshot::{MANIFOLD_RECORD, TRAILER};
 use arphysics::{
     BodyDef, Capacities, ChainPath, Error, GravityForceGenerator, MassData, PolygonPath, Rect, Scalar,
     Vector2, World, WorldDef,
@@ -45,12 +45,13 @@ fn chain_world() -> World<'static> {
 }
 
 /// Writes `word` as the first arbiter's sub-key word and reseals the
-/// checksum (the world has no joints, so the words end where the joint
-/// allocator's 12 bytes start).
+/// checksum (the world has no joints, and recycles contacts by default, so
+/// the words are followed by one manifold record per arbiter and then the
+/// joint allocator's 12 bytes).
 fn with_first_word(snap: &[u8], arbiters: usize, word: u32) -> Vec<u8> {
     let mut bad = snap.to_vec();
     let n = bad.len();
-    let first = n - TRAILER - 12 - arbiters * 4;
+    let first = n - TRAILER - 12 - arbiters * MANIFOLD_RECORD - arbiters * 4;
     bad[first..first + 4].copy_from_slice(&word.to_le_bytes());
     let sum = XxHash64::oneshot(0, &bad[..n - TRAILER]);
     bad[n - TRAILER..].copy_from_slice(&sum.to_le_bytes());

@@ -10,8 +10,8 @@
 //! the validation.
 
 use arphysics::snapshot::{
-    diff, Difference, Object, ARBITER_LINKS, ARBITER_RECORD, BODY_RECORD, COMPOUND_RECORD, HEADER,
-    PROPS_RECORD, SHAPES, SHAPE_RECORD, TRAILER,
+    diff, Difference, Object, ARBITER_LINKS, ARBITER_MANIFOLDS, ARBITER_RECORD, BODY_RECORD, COMPOUND_RECORD,
+    HEADER, MANIFOLD_RECORD, PROPS_RECORD, SHAPES, SHAPE_RECORD, TRAILER,
 };
 use arphysics::{
     BodyDef, BodyHandle, BodyShape, Capacities, Error, PathHandle, PolygonPath, ShapeDef, World,
@@ -21,8 +21,9 @@ use twox_hash::XxHash64;
 mod common;
 use common::{dt, s, v, world_with};
 
-/// Bytes of the world part: step count (8), settings (88), paths checksum (8).
-const WORLD_BYTES: usize = 104;
+/// Bytes of the world part: step count (8), settings (96, the contact
+/// recycle distance last), paths checksum (8).
+const WORLD_BYTES: usize = 112;
 /// Bytes of an allocator state: slots used, free head, live count.
 const ALLOC_BYTES: usize = 12;
 
@@ -421,17 +422,20 @@ fn arbiter_shape_indices_must_be_below_their_bodys_shape_count() {
     // The L's last arbiter: a larger shape index on it keeps the key order.
     let k = arbiters.iter().rposition(|a| a.body_a() == l || a.body_b() == l).expect("the L touches");
     let on_a = arbiters[k].body_a() == l;
-    // From the end (no joints): the joint allocator, the sub-key words when
+    // From the end (no joints): the joint allocator, the manifold records
+    // (the scene recycles contacts, the default), the sub-key words when
     // some arbiter has a link or shape index, the records, their count.
     let words = arbiters.iter().any(|a| a.link() != 0 || a.shape_a() != 0 || a.shape_b() != 0);
-    let record = ARBITER_RECORD + if words { 4 } else { 0 };
+    let record = ARBITER_RECORD + if words { 4 } else { 0 } + MANIFOLD_RECORD;
     let count_at = snap.len() - TRAILER - ALLOC_BYTES - arbiters.len() * record - 4;
     assert_eq!(u32_at(&snap, count_at) & ARBITER_LINKS != 0, words);
+    assert_ne!(u32_at(&snap, count_at) & ARBITER_MANIFOLDS, 0, "the manifold records follow");
     let with_word = |shape: u32| {
         let mut bad = snap.clone();
+        // The words go between the records and the manifold records.
         let words_at = count_at + 4 + arbiters.len() * ARBITER_RECORD;
         if u32_at(&bad, count_at) & ARBITER_LINKS == 0 {
-            put_u32(&mut bad, count_at, arbiters.len() as u32 | ARBITER_LINKS);
+            put_u32(&mut bad, count_at, arbiters.len() as u32 | ARBITER_LINKS | ARBITER_MANIFOLDS);
             bad.splice(words_at..words_at, vec![0u8; 4 * arbiters.len()]);
             let len = bad.len() as u64;
             bad[8..16].copy_from_slice(&len.to_le_bytes());

@@ -127,9 +127,10 @@ fn a_snapshot_whose_arbiter_names_a_missing_body_is_rejected_or_harmless() {
     let mut snap = vec![0u8; w.snapshot_len()];
     w.snapshot(&mut snap).expect("snapshot");
     // No joints: the trailer (8 bytes) follows the joint allocator (12 bytes),
-    // which follows the one 58-byte arbiter record: body A (index, generation),
-    // then body B.
-    let at = snap.len() - 8 - 12 - 58 + 8;
+    // which follows the arbiter's 128-byte manifold record (the world recycles
+    // contacts, the default), which follows the one 58-byte arbiter record:
+    // body A (index, generation), then body B.
+    let at = snap.len() - 8 - 12 - 128 - 58 + 8;
     assert_eq!(snap[at..at + 4], 1u32.to_le_bytes(), "layout of the arbiter record");
     snap[at..at + 4].copy_from_slice(&1_000_000u32.to_le_bytes());
     reseal(&mut snap);

@@ -3,7 +3,10 @@
 //! trailer; a snapshot restores from a longer buffer; `max_snapshot_len` bounds
 //! every snapshot a world can write; per-part hashes name the part that diverged.
 
-use arphysics::snapshot::{diff, Difference, Object, StateHashes, ARBITER_RECORD, JOINT_RECORD, TRAILER};
+use arphysics::snapshot::{
+    diff, Difference, Object, StateHashes, ARBITER_MANIFOLDS, ARBITER_RECORD, JOINT_RECORD, MANIFOLD_RECORD,
+    TRAILER,
+};
 use arphysics::{
     BodyDef, BodyHandle, Capacities, Error, GravityForceGenerator, GravityToPointForceGenerator, JointDef,
     JointHandle, JointKind, LinearForceGenerator, PolygonPath, Rect, Scalar, Targets, Vector2, World,
@@ -244,9 +247,12 @@ fn max_snapshot_len_bounds_a_world_filled_to_capacity() {
         w.add_joint(JointDef::to_world(*b, Vector2::ZERO, anchor, JointKind::Rod { length: s(2.0) }))
             .expect("joint");
     }
-    // Nothing touches: the snapshot is the largest but for the contact store.
+    // Nothing touches: the snapshot is the largest but for the contact store,
+    // whose every arbiter would also write its manifold record (the world
+    // recycles contacts, the default; the bound allows for them in any world).
+    let per_arbiter = ARBITER_RECORD + MANIFOLD_RECORD;
     let len = w.snapshot_len();
-    assert_eq!(max - len, caps.contacts * ARBITER_RECORD, "everything else is at its maximum");
+    assert_eq!(max - len, caps.contacts * per_arbiter, "everything else is at its maximum");
     assert_eq!(take(&w).len(), len);
     // Touching pairs fill the contact store: the largest snapshot is the bound.
     for pair in bodies.chunks(2).skip(caps.joints / 2).take(caps.contacts) {
@@ -258,7 +264,7 @@ fn max_snapshot_len_bounds_a_world_filled_to_capacity() {
     assert!(arbiters > 0, "the moved bodies touch");
     let len = w.snapshot_len();
     assert!(len <= max);
-    assert_eq!(max - len, (caps.contacts - arbiters) * ARBITER_RECORD);
+    assert_eq!(max - len, (caps.contacts - arbiters) * per_arbiter);
 }
 
 fn hashes(w: &World<'_>) -> StateHashes {
@@ -308,8 +314,10 @@ fn per_part_hashes_name_only_the_part_that_diverged() {
     let mut snap = take(&a.world);
     let n = snap.len();
     let joints_used = a.world.joints().count();
-    let arbiters_end = n - TRAILER - 12 - joints_used * JOINT_RECORD;
-    let first_arbiter = arbiters_end - a.world.arbiters().count() * ARBITER_RECORD;
+    // The contacts part ends with one manifold record per arbiter (the scene
+    // recycles contacts, the default; no chains, so no sub-key words).
+    let contacts_end = n - TRAILER - 12 - joints_used * JOINT_RECORD;
+    let first_arbiter = contacts_end - a.world.arbiters().count() * (ARBITER_RECORD + MANIFOLD_RECORD);
     let normal_impulse = first_arbiter + 8 + 8 + 1 + 4 + 1 + 2;
     snap[normal_impulse] ^= 1;
     let sum = XxHash64::oneshot(0, &snap[..n - TRAILER]);
@@ -324,4 +332,86 @@ fn per_part_hashes_name_only_the_part_that_diverged() {
     run(&mut b.world, 1);
     let after = differing(&base, &hashes(&b.world));
     assert!(after.contains(&"world") && after.contains(&"bodies"), "{after:?}");
+}
+
+/// Four boxes resting on a ground (three in a row, one on top), and a static
+/// sensor over the row: its overlap is an arbiter without contact points, so
+/// without a kept manifold. No joints, no chains.
+fn resting_boxes() -> World<'static> {
+    let bounds = Rect::from_corners(v(-50.0, -20.0), v(50.0, 80.0));
+    let mut w =
+        World::with_capacities(WorldDef::with_bounds(bounds), Capacities::for_bodies(16)).expect("world");
+    w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0))).expect("gravity");
+    let ground = w.add_path(PolygonPath::rectangle(s(40.0), s(1.0)).expect("g")).expect("p");
+    w.add_body(BodyDef::polygon(ground).position(v(0.0, -0.5)).static_body()).expect("ground");
+    let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("b")).expect("p");
+    for i in 0..3 {
+        w.add_body(BodyDef::polygon(unit).position(v(f64::from(i), 0.5))).expect("box");
+    }
+    w.add_body(BodyDef::polygon(unit).position(v(0.5, 1.5))).expect("top");
+    w.add_body(BodyDef::polygon(unit).position(v(2.0, 1.2)).static_body().sensor()).expect("sensor");
+    w
+}
+
+#[test]
+fn a_recycling_world_writes_one_manifold_record_per_arbiter_and_checks_them() {
+    let mut w = resting_boxes();
+    let default = arphysics::limits::DEFAULT_CONTACT_RECYCLE_DISTANCE;
+    assert_ne!(default, Scalar::ZERO, "recycling is the default");
+    run(&mut w, 120);
+    let snap = take(&w);
+    let (n, k) = (snap.len(), w.arbiters().count());
+    assert!(k >= 6, "the boxes rest in contact ({k} arbiters)");
+    // From the end (no joints, no chains, so no sub-key words): the joint
+    // allocator, one manifold record per arbiter, the arbiter records, their
+    // count.
+    let manifolds_at = n - TRAILER - 12 - k * MANIFOLD_RECORD;
+    let records_at = manifolds_at - k * ARBITER_RECORD;
+    let count = u32::from_le_bytes(snap[records_at - 4..records_at].try_into().unwrap());
+    assert_eq!(count, k as u32 | ARBITER_MANIFOLDS, "bit 30 set, bit 31 clear");
+    let state = |i: usize| snap[records_at + i * ARBITER_RECORD + 16];
+    assert!((0..k).any(|i| state(i) & 0x40 != 0), "resting contacts keep their manifolds");
+    let bare = (0..k).find(|&i| state(i) & 0x40 == 0).expect("the sensor's arbiter keeps none");
+    let bare_at = manifolds_at + bare * MANIFOLD_RECORD;
+    assert!(snap[bare_at..bare_at + MANIFOLD_RECORD].iter().all(|&b| b == 0), "its record is zeros");
+
+    // The same world with recycling off: the 58-byte records only, and 128
+    // bytes an arbiter shorter.
+    let mut off = resting_boxes();
+    off.restore(&snap).expect("restore");
+    assert_eq!(off.state_hash(), w.state_hash());
+    off.set_contact_recycle_distance(Scalar::ZERO).expect("0 turns recycling off");
+    let plain = take(&off);
+    assert_eq!(n, plain.len() + k * MANIFOLD_RECORD);
+    let plain_records = plain.len() - TRAILER - 12 - k * ARBITER_RECORD;
+    assert_eq!(plain_records, records_at, "the same offset: the world part is the same size");
+    assert_eq!(u32::from_le_bytes(plain[plain_records - 4..plain_records].try_into().unwrap()), k as u32);
+    // The records are the same but for the kept-manifold bit.
+    let mut unflagged = snap[records_at..manifolds_at].to_vec();
+    for i in 0..k {
+        unflagged[i * ARBITER_RECORD + 16] &= !0x40;
+    }
+    assert_eq!(unflagged, plain[plain_records..plain_records + k * ARBITER_RECORD]);
+
+    // Non-zero bytes in the manifold record of the arbiter without a kept
+    // manifold (checksum recomputed): refused, the world (stepped on, so an
+    // accepted restore would show) unchanged.
+    run(&mut w, 5);
+    let (hash, bytes) = (w.state_hash(), take(&w));
+    // The normal's x, body A's rotation's cosine, the second point's separation.
+    for offset in [0, 16, 48 + 40 + 32] {
+        let mut bad = snap.clone();
+        bad[bare_at + offset] = 1;
+        let sum = XxHash64::oneshot(0, &bad[..n - TRAILER]);
+        bad[n - TRAILER..].copy_from_slice(&sum.to_le_bytes());
+        match w.restore(&bad) {
+            Err(Error::InvalidSnapshot { what }) => assert!(what.contains("manifold"), "{what}"),
+            other => panic!("a manifold without the flag accepted (byte {offset}): {other:?}"),
+        }
+        assert_eq!(w.state_hash(), hash, "byte {offset}: the world changed");
+        assert_eq!(take(&w), bytes, "byte {offset}: the world changed");
+    }
+    // The untouched snapshot restores.
+    w.restore(&snap).expect("restore");
+    assert_eq!(take(&w), snap);
 }

@@ -6,7 +6,7 @@
 
 use super::layout::{BodyRecord, GeneratorRecord, Layout, StoredGenerator};
 use super::write::Props;
-use super::{NO_LINK, TOUCHING};
+use super::{CACHED, NO_LINK, TOUCHING};
 use crate::arbiter::{Arbiter, ArbiterState};
 use crate::arena::NO_SLOT;
 use crate::body::{body_radius, compute_aabb};
@@ -29,6 +29,7 @@ fn slot_link(link: u32) -> u32 {
 pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
     w.step_count = l.step_count;
     w.def.substeps = l.def.substeps;
+    w.def.contact_recycle_distance = l.def.contact_recycle_distance;
     // The shape store first: a compound body's radius and box come from it.
     let slots = &mut w.paths.slots;
     match l.shapes {
@@ -85,7 +86,7 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
             body_b: a.b,
             level_a: level(a.a),
             level_b: level(a.b),
-            state: ArbiterState::from_u8(a.state & !TOUCHING).unwrap_or(ArbiterState::Separated),
+            state: ArbiterState::from_u8(a.state & !(TOUCHING | CACHED)).unwrap_or(ArbiterState::Separated),
             count: a.count,
             ..Arbiter::EMPTY
         };
@@ -96,6 +97,17 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
             p.id = stored.id;
             p.normal_impulse = stored.normal_impulse;
             p.tangent_impulse = stored.tangent_impulse;
+        }
+        if a.state & CACHED != 0 {
+            let m = a.manifold;
+            arb.normal = m.normal;
+            (arb.rot_a0, arb.rot_b0) = (m.rot_a, m.rot_b);
+            for (p, cached) in arb.points.iter_mut().zip(m.points) {
+                p.anchor_a = cached.anchor_a;
+                p.anchor_b = cached.anchor_b;
+                p.base_separation = cached.separation;
+            }
+            arb.set_has_manifold(true);
         }
         w.arbiters.push(arb);
     }

@@ -152,6 +152,7 @@ pub fn diff(a: &[u8], b: &[u8]) -> Result<Option<Difference>, Error> {
                 aa.points.iter().zip(&ab.points).any(|(p, q)| p.tangent_impulse != q.tangent_impulse),
                 "friction impulse",
             ),
+            (aa.manifold != ab.manifold, "cached manifold"),
         ];
         if let Some((_, field)) = fields.iter().find(|(differs, _)| *differs) {
             return found(object, field);

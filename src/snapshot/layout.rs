@@ -14,9 +14,9 @@
 use super::cursor::Cursor;
 use super::write::Props;
 use super::{
-    checksum, invalid, ARBITER_LINKS, ARBITER_RECORD, BODY_RECORD, BULLET, COMPOUND_RECORD, FIXED_ROTATION,
-    HEADER, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, SHAPES, SHAPES_SHIFT,
-    SHAPE_RECORD, TRAILER, VERSION,
+    checksum, invalid, ARBITER_LINKS, ARBITER_MANIFOLDS, ARBITER_RECORD, BODY_RECORD, BULLET,
+    COMPOUND_RECORD, FIXED_ROTATION, HEADER, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, MANIFOLD_RECORD,
+    OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, SHAPES, SHAPES_SHIFT, SHAPE_RECORD, TRAILER, VERSION,
 };
 use crate::arbiter::{sub_key, MAX_LINK, MAX_SHAPE_INDEX};
 use crate::body::{BodyHandle, BodyType, CollisionFilter, Shape};
@@ -54,6 +54,8 @@ pub(super) struct Layout<'b> {
     pub(super) generators_at: usize,
     pub(super) arbiters: u32,
     pub(super) arbiters_at: usize,
+    /// Where the arbiters' manifold records are, when the world recycles them.
+    pub(super) manifolds_at: Option<usize>,
     /// Where the arbiters' chain links are, when any is not 0.
     pub(super) links_at: Option<usize>,
     pub(super) joints: Alloc,
@@ -97,6 +99,7 @@ fn read_def(c: &mut Cursor<'_>) -> Result<WorldDef, Error> {
     let contact_push_speed = c.scalar()?;
     let restitution_threshold = c.scalar()?;
     let arbiter_persistence = c.u32()?;
+    let contact_recycle_distance = c.scalar()?;
     Ok(WorldDef {
         bounds,
         max_linear_speed,
@@ -107,6 +110,7 @@ fn read_def(c: &mut Cursor<'_>) -> Result<WorldDef, Error> {
         contact_push_speed,
         restitution_threshold,
         arbiter_persistence,
+        contact_recycle_distance,
         // Like the capacities, a property of the world that restores, not of
         // the state: not encoded; `validate` compares the rest.
         strict_capacity: false,
@@ -200,12 +204,22 @@ impl<'b> Layout<'b> {
             read_generator(&mut c)?;
         }
         let arbiters = c.u32()?;
-        let (arbiters, with_links) = (arbiters & !ARBITER_LINKS, arbiters & ARBITER_LINKS != 0);
+        let (with_links, with_manifolds) = (arbiters & ARBITER_LINKS != 0, arbiters & ARBITER_MANIFOLDS != 0);
+        let arbiters = arbiters & !(ARBITER_LINKS | ARBITER_MANIFOLDS);
+        if with_manifolds != (def.contact_recycle_distance != ZERO) {
+            return Err(invalid(
+                "manifold records where the world does not recycle them, or none where it does",
+            ));
+        }
         let arbiters_at = c.pos();
         skip_records(&mut c, arbiters, ARBITER_RECORD)?;
         let links_at = with_links.then(|| c.pos());
         if with_links {
             skip_records(&mut c, arbiters, 4)?;
+        }
+        let manifolds_at = with_manifolds.then(|| c.pos());
+        if with_manifolds {
+            skip_records(&mut c, arbiters, MANIFOLD_RECORD)?;
         }
         let joints = read_alloc(&mut c)?;
         let joints_at = c.pos();
@@ -227,6 +241,7 @@ impl<'b> Layout<'b> {
             arbiters,
             arbiters_at,
             links_at,
+            manifolds_at,
             joints,
             joints_at,
             shapes,
@@ -323,11 +338,23 @@ impl<'b> Layout<'b> {
         for p in &mut points {
             *p = PointRecord { id: c.u16()?, normal_impulse: c.scalar()?, tangent_impulse: c.scalar()? };
         }
+        let mut c = match self.manifolds_at {
+            Some(at) => self.record::<MANIFOLD_RECORD>(at, i),
+            None => Cursor::at(&[0; MANIFOLD_RECORD], 0),
+        };
+        let normal = c.vector()?;
+        let (rot_a, rot_b) = (c.rot()?, c.rot()?);
+        let mut cached =
+            [CachedPoint { anchor_a: Vector2::ZERO, anchor_b: Vector2::ZERO, separation: ZERO }; 2];
+        for p in &mut cached {
+            *p = CachedPoint { anchor_a: c.vector()?, anchor_b: c.vector()?, separation: c.scalar()? };
+        }
+        let manifold = CachedManifold { normal, rot_a, rot_b, points: cached };
         let sub = match self.links_at {
             Some(at) => self.record::<4>(at, i).u32()?,
             None => 0,
         };
-        Ok(ArbiterRecord { a, b, state, steps_separated, count, points, sub })
+        Ok(ArbiterRecord { a, b, state, steps_separated, count, points, manifold, sub })
     }
 
     pub(super) fn joint(&self, i: u32) -> Result<JointRecord, Error> {
@@ -527,9 +554,30 @@ pub(super) struct ArbiterRecord {
     pub(super) steps_separated: u32,
     pub(super) count: u8,
     pub(super) points: [PointRecord; 2],
+    /// The cached manifold (all zeros without the [`CACHED`](super::CACHED) flag).
+    pub(super) manifold: CachedManifold,
     /// The sub-key word (see [`ARBITER_LINKS`]): the chain link and the
     /// shape indices (0 when the pair has no section).
     pub(super) sub: u32,
+}
+
+/// An arbiter's cached manifold as stored (see `collision::recycle`): the
+/// normal, both bodies' rotations when it was computed and its points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct CachedManifold {
+    pub(super) normal: Vector2,
+    pub(super) rot_a: Rot,
+    pub(super) rot_b: Rot,
+    pub(super) points: [CachedPoint; 2],
+}
+
+/// A cached manifold point: its offsets from body A's and body B's centres
+/// and its separation when the manifold was computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct CachedPoint {
+    pub(super) anchor_a: Vector2,
+    pub(super) anchor_b: Vector2,
+    pub(super) separation: Scalar,
 }
 
 /// One contact point of an arbiter as stored: its feature id and its

@@ -9,10 +9,12 @@
 //! endianness or pointer width, nor on the world's capacities. Integers are their
 //! little-endian bytes; a `Scalar` is its raw 64-bit two's-complement bits.
 //!
-//! Layout (format [`VERSION`] 4), in order:
+//! Layout (format [`VERSION`] 5; 4 had neither the contact recycle distance
+//! nor the manifold records), in order:
 //! 1. framing, [`HEADER`] = 16 bytes: `ARPS`, the version (u32), and the
 //!    snapshot's total length in bytes (u64, trailer included);
-//! 2. the world: step count, world settings, a checksum of the polygon paths;
+//! 2. the world: step count, world settings (the contact recycle distance
+//!    last), a checksum of the polygon paths;
 //! 3. the table of body properties (shape; type with the bullet, sensor and
 //!    fixed-rotation flags; mass, inertia, friction, restitution, groups,
 //!    level, user data; linear and angular damping, gravity scale; filter
@@ -36,6 +38,10 @@
 //!    bit 31 of their count is set ([`ARBITER_LINKS`]) and the records are
 //!    followed by each arbiter's sub-key word (u32: the chain link in bits
 //!    0–19, the shape index on body A in bits 26–28 and on body B in 29–31);
+//!    then, when the world recycles manifolds, bit 30 of the count is set
+//!    ([`ARBITER_MANIFOLDS`]) and each arbiter's [`MANIFOLD_RECORD`] follows
+//!    (128 bytes: the manifold the next step may carry on, zeros when it
+//!    has none);
 //! 7. the joint allocator and the joints (160 bytes each: the definition with
 //!    its kind as a tag, 0 spring to 5 weld and 6 the target joint, whose
 //!    target is the definition's world point, then the reference angle and
@@ -49,7 +55,8 @@
 //! included) before it changes anything. A live body costs 64 bytes, plus 118 for
 //! its properties unless it shares them with the body before it (a pyramid's
 //! boxes do), plus, for a compound body, 8 and 126 per shape; an arbiter 58
-//! bytes.
+//! bytes, plus 128 for its manifold while the world recycles them (the
+//! default; see [`WorldDef::contact_recycle_distance`](crate::WorldDef::contact_recycle_distance)).
 //!
 //! # Integrity, length and hashes
 //! [`World::restore`] reads the framing, then verifies the checksum over the
@@ -104,7 +111,7 @@ use hash::{Hash64, PartsHasher};
 /// XXH64 checksum trailer; 3: the body options and filter in the properties
 /// record; 4: capsule and segment shapes, a
 /// 24-byte shape field, and each polygon path's rounding in the paths checksum).
-pub const VERSION: u32 = 4;
+pub const VERSION: u32 = 5;
 const MAGIC: &[u8; 4] = b"ARPS";
 /// Bytes of the framing that opens a snapshot: `ARPS`, the version (u32) and the
 /// snapshot's total length in bytes (u64), trailer included.
@@ -130,6 +137,24 @@ pub const BODY_RECORD: usize = 64;
 pub const PROPS_RECORD: usize = 118;
 /// Bytes of one arbiter record.
 pub const ARBITER_RECORD: usize = 58;
+/// Bytes of one arbiter's manifold record (see [`ARBITER_MANIFOLDS`]):
+///
+/// | offset | bytes | field |
+/// |---|---|---|
+/// | 0 | 16 | the kept manifold's normal |
+/// | 16 | 16 + 16 | body A's and body B's rotations when it was computed |
+/// | 48 | 2 × 40 | per point: its offsets from A's and B's centres and its separation when it was computed |
+///
+/// All zeros for an arbiter without a kept manifold (bit 6 of its state
+/// byte clear), and each point's past the arbiter's count.
+pub const MANIFOLD_RECORD: usize = 128;
+/// Bit 30 of the arbiter count: the arbiter records (and their sub-key
+/// words, when there are any) are followed by one [`MANIFOLD_RECORD`] per
+/// arbiter, the manifold the next step may carry on rather than compute
+/// again. Written exactly when the world recycles manifolds
+/// ([`WorldDef::contact_recycle_distance`](crate::WorldDef::contact_recycle_distance)
+/// not 0): a world that does not keeps 58 bytes an arbiter.
+pub const ARBITER_MANIFOLDS: u32 = 1 << 30;
 /// Bit 31 of the arbiter count: the arbiter records are followed by one
 /// u32 per arbiter, its chain link (bits 0–19) and the indices of its shapes
 /// on body A (bits 26–28) and body B (bits 29–31); bits 20–25 are 0.
@@ -179,10 +204,13 @@ const BULLET: u8 = 1 << 4;
 const SENSOR: u8 = 1 << 5;
 /// The fixed-rotation flag of the body-type byte.
 const FIXED_ROTATION: u8 = 1 << 6;
-/// The state byte of an arbiter record: bits 0–6 the [`ArbiterState`](crate::ArbiterState),
+/// The state byte of an arbiter record: bits 0–5 the [`ArbiterState`](crate::ArbiterState),
 /// bit 7 set while the pair touches (for contact begin and end events; only in
 /// the `Contact` state).
 const TOUCHING: u8 = 1 << 7;
+/// Bit 6 of an arbiter's state byte: its [`MANIFOLD_RECORD`] holds the
+/// manifold the next step may carry on; only with at least one point.
+const CACHED: u8 = 1 << 6;
 /// The link field of a body record: bit 31 live, bit 30 out of bounds, bits 0–29
 /// the free-list successor (free slot) or the properties index (live slot).
 const LIVE: u32 = 1 << 31;

@@ -7,9 +7,9 @@
 //! world, so a rejected snapshot leaves the world as it was, and `apply` cannot
 //! fail half-way.
 
-use super::layout::{Alloc, BodyRecord, GeneratorRecord, Layout, StoredGenerator};
+use super::layout::{Alloc, BodyRecord, CachedPoint, GeneratorRecord, Layout, StoredGenerator};
 use super::write::{paths_checksum, Props};
-use super::{invalid, LINK_MASK, NO_LINK, TOUCHING};
+use super::{invalid, CACHED, LINK_MASK, NO_LINK, TOUCHING};
 use crate::arbiter::{ArbiterState, MAX_STEPS_SEPARATED};
 use crate::body::{shape_radius, BodyHandle, BodyType, Shape};
 use crate::compound::{BodyShape, MAX_SHAPES_PER_BODY, NO_SHAPE};
@@ -20,7 +20,7 @@ use crate::geometry::mass::{MAX_INERTIA, MAX_MASS, MIN_INERTIA, MIN_MASS};
 use crate::geometry::{Capsule, Segment};
 use crate::limits::{check_damping, check_friction, check_gravity_scale, check_restitution, MAX_BODY_RADIUS};
 use crate::math::scalar::{self, Scalar, ZERO};
-use crate::math::Rot;
+use crate::math::{Rot, Vector2};
 use crate::world::{World, MAX_COORDINATE};
 
 /// Checks a free list: starting at `head`, every link names a free slot below
@@ -289,14 +289,20 @@ fn check_targets(_: &Targets) -> Result<(), Error> {
 /// Everything `apply` relies on, checked without changing the world.
 pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
     // `strict_capacity`, like the capacities, belongs to the restoring world,
-    // not to the state: it is not encoded. The sub-step count is state (a game
-    // changes it with `set_substeps`): it comes back with the snapshot, checked
-    // as `World::new` checks it. Compare the rest.
+    // not to the state: it is not encoded. The sub-step count and the contact
+    // recycle distance are state (a game changes them with `set_substeps` and
+    // `set_contact_recycle_distance`): they come back with the snapshot,
+    // checked as `World::new` checks them. Compare the rest.
     let def = crate::WorldDef { strict_capacity: w.def.strict_capacity, ..l.def };
-    if (crate::WorldDef { substeps: w.def.substeps, ..def }) != w.def {
+    let settable = crate::WorldDef {
+        substeps: w.def.substeps,
+        contact_recycle_distance: w.def.contact_recycle_distance,
+        ..def
+    };
+    if settable != w.def {
         return Err(Error::SnapshotMismatch { what: "world definition" });
     }
-    def.validate().map_err(|_| invalid("sub-steps out of range"))?;
+    def.validate().map_err(|_| invalid("sub-steps or contact recycle distance out of range"))?;
     if l.paths != paths_checksum(w) {
         return Err(Error::SnapshotMismatch { what: "polygon paths" });
     }
@@ -398,14 +404,35 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
         if a.shape_a() >= shape_count(l, a.a.index())? || a.shape_b() >= shape_count(l, a.b.index())? {
             return Err(invalid("an arbiter names a shape its body does not have"));
         }
-        let state =
-            ArbiterState::from_u8(a.state & !TOUCHING).ok_or_else(|| invalid("unknown arbiter state"))?;
+        let state = ArbiterState::from_u8(a.state & !(TOUCHING | CACHED))
+            .ok_or_else(|| invalid("unknown arbiter state"))?;
         let touching_ok = a.state & TOUCHING == 0 || state == ArbiterState::Contact;
         if !matches!(state, ArbiterState::Contact | ArbiterState::Ignoring | ArbiterState::Separated)
             || a.count > 2
             || !touching_ok
         {
             return Err(invalid("an arbiter in a state that does not persist"));
+        }
+        // A cached manifold has points and was computed at unit rotations;
+        // without one (and past the count) its bytes are zeros, so that
+        // equal worlds encode equally.
+        let m = a.manifold;
+        let zero = |p: &CachedPoint| {
+            p.anchor_a == Vector2::ZERO && p.anchor_b == Vector2::ZERO && p.separation == ZERO
+        };
+        let cached_ok = if a.state & CACHED != 0 {
+            a.count > 0
+                && is_unit(m.rot_a)
+                && is_unit(m.rot_b)
+                && m.points.iter().skip(usize::from(a.count)).all(zero)
+        } else {
+            m.normal == Vector2::ZERO
+                && m.rot_a == Rot { c: ZERO, s: ZERO }
+                && m.rot_b == Rot { c: ZERO, s: ZERO }
+                && m.points.iter().all(zero)
+        };
+        if !cached_ok {
+            return Err(invalid("an arbiter's cached manifold is out of range"));
         }
     }
     // Joints.

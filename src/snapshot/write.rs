@@ -2,9 +2,9 @@
 
 use super::hash::Hash64;
 use super::{
-    Part, Sink, ARBITER_LINKS, ARBITER_RECORD, BODY_RECORD, BULLET, COMPOUND_RECORD, FIXED_ROTATION, HEADER,
-    JOINT_RECORD, LINK_MASK, LIVE, MAGIC, NO_LINK, OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, SHAPES, SHAPES_SHIFT,
-    SHAPE_RECORD, TOUCHING, TRAILER, VERSION,
+    Part, Sink, ARBITER_LINKS, ARBITER_MANIFOLDS, ARBITER_RECORD, BODY_RECORD, BULLET, CACHED,
+    COMPOUND_RECORD, FIXED_ROTATION, HEADER, JOINT_RECORD, LINK_MASK, LIVE, MAGIC, MANIFOLD_RECORD, NO_LINK,
+    OUT_OF_BOUNDS, PROPS_RECORD, SENSOR, SHAPES, SHAPES_SHIFT, SHAPE_RECORD, TOUCHING, TRAILER, VERSION,
 };
 use crate::arbiter::Arbiter;
 use crate::arena::NO_SLOT;
@@ -60,8 +60,8 @@ impl Props {
     }
 }
 
-/// Bytes of the world part: step count, settings (88 bytes), paths checksum.
-const WORLD_BYTES: usize = 8 + 88 + 8;
+/// Bytes of the world part: step count, settings (96 bytes), paths checksum.
+const WORLD_BYTES: usize = 8 + 96 + 8;
 /// Bytes of an allocator state (slots used, free head, live count).
 const ALLOC_BYTES: usize = 12;
 /// Bytes of a generator slot holding the largest generator: generation, link,
@@ -98,6 +98,12 @@ impl Plan {
             .map(|i| generator_bytes(w.generators.get_at(i)))
             .fold(0usize, usize::saturating_add);
         let links = if has_links(w) { w.arbiters.live().len().saturating_mul(4) } else { 0 };
+        let manifolds = if w.def.contact_recycle_distance != Scalar::ZERO {
+            w.arbiters.live().len().saturating_mul(MANIFOLD_RECORD)
+        } else {
+            0
+        };
+        let links = links.saturating_add(manifolds);
         let shapes = match w.paths.slots.allocator_state().0 {
             0 => 0,
             used => shapes_len(used as usize, compounds as usize),
@@ -152,6 +158,8 @@ pub(super) fn max_len(w: &World<'_>) -> usize {
     // section (a compound body has at least one shape slot).
     let links =
         if w.paths.chains.capacity() > 0 || shapes > 0 { w.arbiters.capacity().saturating_mul(4) } else { 0 };
+    // Any world may recycle manifolds (`set_contact_recycle_distance`).
+    let links = links.saturating_add(w.arbiters.capacity().saturating_mul(MANIFOLD_RECORD));
     let shapes = if shapes > 0 { shapes_len(shapes, shapes.min(bodies)) } else { 0 };
     sections_len(
         bodies,
@@ -286,14 +294,17 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
     s.part(Part::Contacts);
     let live = w.arbiters.live();
     let links = has_links(w);
-    s.u32(live.len() as u32 | if links { ARBITER_LINKS } else { 0 });
+    let recycles = w.def.contact_recycle_distance != Scalar::ZERO;
+    let flags = if links { ARBITER_LINKS } else { 0 } | if recycles { ARBITER_MANIFOLDS } else { 0 };
+    s.u32(live.len() as u32 | flags);
     for a in live {
         let mut rec = Record::<ARBITER_RECORD>::default();
         for h in [a.body_a, a.body_b] {
             rec.u32(h.index());
             rec.u32(h.generation());
         }
-        rec.u8(a.state as u8 | if a.is_touching() { TOUCHING } else { 0 });
+        let cached = recycles && a.has_manifold() && a.count > 0;
+        rec.u8(a.state as u8 | if a.is_touching() { TOUCHING } else { 0 } | if cached { CACHED } else { 0 });
         rec.u32(a.steps_separated());
         rec.u8(a.count);
         for (k, p) in a.points.iter().enumerate() {
@@ -311,6 +322,23 @@ pub(super) fn write(w: &World<'_>, plan: &Plan, s: &mut impl Sink) {
     if links {
         for a in live {
             s.u32(sub_word(a));
+        }
+    }
+    // The manifolds the next step may carry on (see `collision::recycle`).
+    if recycles {
+        for a in live {
+            let mut rec = Record::<MANIFOLD_RECORD>::default();
+            if a.has_manifold() && a.count > 0 {
+                rec.vector(a.normal);
+                rec.rot(a.rot_a0);
+                rec.rot(a.rot_b0);
+                for p in a.points.iter().take(usize::from(a.count)) {
+                    rec.vector(p.anchor_a);
+                    rec.vector(p.anchor_b);
+                    rec.scalar(p.base_separation);
+                }
+            }
+            s.put(&rec.bytes);
         }
     }
 
@@ -416,6 +444,7 @@ pub(super) fn write_def(s: &mut impl Sink, d: &WorldDef) {
     s.scalar(d.contact_push_speed);
     s.scalar(d.restitution_threshold);
     s.u32(d.arbiter_persistence);
+    s.scalar(d.contact_recycle_distance);
 }
 
 /// The shape kind and the 24-byte shape field, zero-padded.

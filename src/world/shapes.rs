@@ -382,6 +382,13 @@ impl World<'_> {
         b.position = position;
         b.radius = radius;
         b.aabb = compute_aabb(b, &self.paths);
+        // The body's shapes or its centre moved on it: the manifolds its
+        // contacts keep no longer describe it (see `collision::recycle`).
+        for a in self.arbiters.live_mut() {
+            if a.body_a == h || a.body_b == h {
+                a.forget_manifold();
+            }
+        }
         Ok(())
     }
 

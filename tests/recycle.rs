@@ -1,0 +1,147 @@
+//! Contact recycling (`WorldDef::contact_recycle_distance`): settled pairs keep
+//! their manifolds, the kept separations follow the bodies, a body that moves
+//! or turns gets its manifold computed again, and the physics stays that of a
+//! world that computes every manifold.
+
+use arphysics::limits::DEFAULT_CONTACT_RECYCLE_DISTANCE;
+use arphysics::{BodyDef, Capacities, PolygonPath, Rect, Scalar, Vector2, World, WorldDef};
+
+fn s(x: f64) -> Scalar {
+    Scalar::from_num(x)
+}
+
+fn v(x: f64, y: f64) -> Vector2 {
+    Vector2::new(s(x), s(y))
+}
+
+const DT: f64 = 1.0 / 60.0;
+
+/// A column of `n` unit boxes on a static ground, recycling at `distance`.
+fn column(n: usize, distance: Scalar) -> World<'static> {
+    let bounds = Rect::from_corners(v(-50.0, -10.0), v(50.0, 90.0));
+    let def = WorldDef { contact_recycle_distance: distance, ..WorldDef::with_bounds(bounds) };
+    let mut w = World::with_capacities(def, Capacities::for_bodies(64)).expect("world");
+    let ground = w.add_path(PolygonPath::rectangle(s(40.0), s(1.0)).expect("ground")).expect("path");
+    w.add_body(BodyDef::polygon(ground).position(v(0.0, -0.5)).static_body()).expect("ground body");
+    let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("path");
+    for i in 0..n {
+        w.add_body(BodyDef::polygon(unit).position(v(0.0, 0.5 + i as f64))).expect("box");
+    }
+    w
+}
+
+fn top_y(w: &World<'_>) -> f64 {
+    w.bodies().map(|(_, b)| b.position().y.to_num::<f64>()).fold(f64::MIN, f64::max)
+}
+
+#[test]
+fn a_settled_column_recycles_its_manifolds_and_stands_as_one_that_computes_them() {
+    let mut kept = column(10, DEFAULT_CONTACT_RECYCLE_DISTANCE);
+    let mut computed = column(10, Scalar::ZERO);
+    let (mut recycled, mut pairs) = (0u64, 0u64);
+    for step in 0..600 {
+        let r = kept.step(s(DT)).expect("step");
+        let c = computed.step(s(DT)).expect("step");
+        assert_eq!(c.manifolds_recycled, 0, "distance 0 computes every manifold");
+        if step >= 300 {
+            recycled += u64::from(r.manifolds_recycled);
+            pairs += u64::from(r.arbiters);
+        }
+    }
+    // Settled: every touching pair (10 of them) carries its manifold on.
+    assert!(recycled * 10 >= pairs * 9, "recycled {recycled} of {pairs} pair-steps");
+    // The column stands the same: top within 1 mm of the computing world's,
+    // at rest, and within the stacking threshold of its height (9.5 m).
+    let (a, b) = (top_y(&kept), top_y(&computed));
+    assert!((a - b).abs() < 1e-3, "top {a} against {b}");
+    assert!((a - 9.5).abs() < 0.05, "top {a}");
+    for (_, body) in kept.bodies() {
+        let vel = body.linear_velocity();
+        assert!(vel.x.abs() < s(0.01) && vel.y.abs() < s(0.01), "at rest: {vel:?}");
+    }
+}
+
+#[test]
+fn kept_separations_follow_the_bodies_and_a_moved_body_is_collided_again() {
+    // One box resting on the ground.
+    let mut w = column(1, DEFAULT_CONTACT_RECYCLE_DISTANCE);
+    for _ in 0..120 {
+        w.step(s(DT)).expect("step");
+    }
+    let r = w.step(s(DT)).expect("step");
+    assert_eq!(r.manifolds_recycled, 1, "the resting box keeps its manifold");
+    let (h, b) = w.bodies().find(|(_, b)| b.position().y > s(0.0)).expect("box");
+    let resting = b.position();
+    let sep_before: Vec<Scalar> = w
+        .arbiters()
+        .flat_map(|a| a.contact_points().iter().map(|p| p.separation).collect::<Vec<_>>())
+        .collect();
+    // Lift it 1 cm (within the recycle distance, 5 cm): the kept manifold's
+    // separations follow, 1 cm larger each, computed without the narrow phase.
+    w.set_position(h, resting + v(0.0, 0.01)).expect("lift");
+    w.body_mut(h).expect("box").set_linear_velocity(Vector2::ZERO);
+    let r = w.step(s(DT)).expect("step");
+    assert_eq!(r.manifolds_recycled, 1);
+    let sep_after: Vec<Scalar> = w
+        .arbiters()
+        .flat_map(|a| a.contact_points().iter().map(|p| p.separation).collect::<Vec<_>>())
+        .collect();
+    assert_eq!(sep_before.len(), 2);
+    for (before, after) in sep_before.iter().zip(&sep_after) {
+        let grew = (*after - *before).to_num::<f64>();
+        assert!((grew - 0.01).abs() < 1e-6, "separation grew {grew} m, expected 0.01");
+    }
+    // Lift it 10 cm, past the distance: computed again, and with the box
+    // 10 cm up the pair is beyond the speculative distance: no points.
+    let p = w.body(h).expect("box").position();
+    w.set_position(h, p + v(0.0, 0.1)).expect("lift");
+    w.body_mut(h).expect("box").set_linear_velocity(Vector2::ZERO);
+    let r = w.step(s(DT)).expect("step");
+    assert_eq!(r.manifolds_recycled, 0, "moved past the distance: collided again");
+    assert_eq!(w.arbiters().map(|a| a.contact_points().len()).sum::<usize>(), 0);
+}
+
+#[test]
+fn a_turned_body_is_collided_again() {
+    let mut w = column(1, DEFAULT_CONTACT_RECYCLE_DISTANCE);
+    for _ in 0..120 {
+        w.step(s(DT)).expect("step");
+    }
+    let (h, b) = w.bodies().find(|(_, b)| b.position().y > s(0.0)).expect("box");
+    // Turn it 3°: its corners move 2.6 cm relative to the ground, and twice
+    // the turn at its radius (0.71 m) is past 5 cm.
+    let p = b.position();
+    w.set_angle(h, s(3f64.to_radians())).expect("turn");
+    w.set_position(h, p).expect("place");
+    let r = w.step(s(DT)).expect("step");
+    assert_eq!(r.manifolds_recycled, 0);
+}
+
+#[test]
+fn the_recycle_distance_is_checked_and_restored_with_the_snapshot() {
+    let mut w = column(3, DEFAULT_CONTACT_RECYCLE_DISTANCE);
+    assert!(w.set_contact_recycle_distance(s(-0.01)).is_err());
+    assert!(w.set_contact_recycle_distance(s(0.3)).is_err());
+    assert_eq!(w.def().contact_recycle_distance, DEFAULT_CONTACT_RECYCLE_DISTANCE);
+    for _ in 0..60 {
+        w.step(s(DT)).expect("step");
+    }
+    let mut snap = vec![0u8; w.snapshot_len()];
+    w.snapshot(&mut snap).expect("snapshot");
+    // Turned off after the snapshot, then rolled back: recycling comes back
+    // with the snapshot, and the future is the one stepping on gives.
+    let mut on = column(3, DEFAULT_CONTACT_RECYCLE_DISTANCE);
+    for _ in 0..60 {
+        on.step(s(DT)).expect("step");
+    }
+    assert_eq!(on.state_hash(), w.state_hash());
+    w.set_contact_recycle_distance(Scalar::ZERO).expect("off");
+    w.step(s(DT)).expect("step");
+    w.restore(&snap).expect("restore");
+    assert_eq!(w.def().contact_recycle_distance, DEFAULT_CONTACT_RECYCLE_DISTANCE);
+    for _ in 0..30 {
+        let (a, b) = (w.step(s(DT)).expect("step"), on.step(s(DT)).expect("step"));
+        assert_eq!(a.manifolds_recycled, b.manifolds_recycled);
+        assert_eq!(w.state_hash(), on.state_hash());
+    }
+}
