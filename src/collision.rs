@@ -21,8 +21,8 @@ use crate::body::{shape_aabb, Body, BodyHandle, BodyType, Shape, ShapeStore};
 use crate::collide::{
     collide_capsule_circle, collide_capsules, collide_chain_segment_capsule, collide_chain_segment_circle,
     collide_chain_segment_polygon, collide_circles, collide_polygon_capsule, collide_polygon_circle,
-    collide_polygons, collide_segment_capsule, collide_segment_circle, collide_segment_polygon, Manifold,
-    ManifoldPoint,
+    collide_polygons, collide_segment_capsule, collide_segment_circle, collide_segment_polygon, Direction,
+    Manifold, ManifoldPoint,
 };
 use crate::compound::{is_compound, shape_of, shapes_of, BodyShape, ShapeData, MAX_SHAPES_PER_BODY};
 use crate::constraint::{Joint, JointMarker};
@@ -37,7 +37,7 @@ use crate::index::{
 };
 use crate::limits::SPECULATIVE_DISTANCE;
 use crate::math::scalar::{below_one, mul_below_one, ZERO as ZERO_SCALAR};
-use crate::math::{Rect, Scalar, Transform, Vector2};
+use crate::math::{Rect, Rot, Scalar, Transform, Vector2};
 use crate::solver::SolverBody;
 use crate::step::StepContext;
 
@@ -463,19 +463,12 @@ fn update_pair<S: ShapeData>(
     // of earlier keys see the bodies shared. (Testing it again cost mixed
     // 180 steps about 2.5 M instructions.)
     let near = boxes_within(a.aabb, b.aabb, SPECULATIVE_DISTANCE);
-    let mut recycled = false;
-    let manifold = if candidate && near {
-        match same.and_then(|p| recycle(p, a, b, ctx.recycle_distance)) {
-            Some(m) => {
-                recycled = true;
-                *recycled_count = recycled_count.saturating_add(1);
-                m
-            }
-            None => {
-                let arb_link = same.map_or(link.min(MAX_LINK), Arbiter::link);
-                collide_body_shapes((a, sa), (b, sb), paths, arb_link, SPECULATIVE_DISTANCE)
-            }
-        }
+    // A pair whose bodies moved little since its manifold was computed
+    // keeps it, written straight into `arb` (see [`recycle`]).
+    let recycled = candidate && near && same.is_some_and(|p| recycle(p, a, b, ctx.recycle_distance, arb));
+    let manifold = if candidate && near && !recycled {
+        let arb_link = same.map_or(link.min(MAX_LINK), Arbiter::link);
+        collide_body_shapes((a, sa), (b, sb), paths, arb_link, SPECULATIVE_DISTANCE)
     } else {
         Manifold::EMPTY
     };
@@ -484,7 +477,7 @@ fn update_pair<S: ShapeData>(
     // is carried over, and the warm start reads the previous points where
     // they are (no whole-record copy).
     let old = match same {
-        Some(p) if manifold.count > 0 => {
+        Some(p) if recycled || manifold.count > 0 => {
             arb.body_a = p.body_a;
             arb.body_b = p.body_b;
             arb.level_a = p.level_a;
@@ -503,21 +496,14 @@ fn update_pair<S: ShapeData>(
     arb.friction = mix_friction(fa, fb);
     arb.restitution = mix_restitution(ra, rb);
     let mut ctx_cb = CallbackContext { bodies, post_step: post_step.view() };
-    let kept = lifecycle(arb, old, &manifold, handlers, &mut ctx_cb, ctx.arbiter_persistence, events);
-    if manifold.count > 0 {
-        match (recycled, same) {
-            (true, Some(p)) => {
-                arb.rot_a0 = p.rot_a0;
-                arb.rot_b0 = p.rot_b0;
-                for (q, o) in arb.points.iter_mut().zip(p.points.iter()) {
-                    q.base_separation = o.base_separation;
-                }
-            }
-            _ => {
-                arb.rot_a0 = a.rotation;
-                arb.rot_b0 = b.rotation;
-            }
-        }
+    let found = if recycled { None } else { Some(&manifold) };
+    let kept = lifecycle(arb, old, found, handlers, &mut ctx_cb, ctx.arbiter_persistence, events);
+    if recycled {
+        *recycled_count = recycled_count.saturating_add(1);
+    } else if manifold.count > 0 {
+        // Computed: the manifold to keep from now on.
+        arb.rot_a0 = a.rotation;
+        arb.rot_b0 = b.rotation;
         arb.set_has_manifold(true);
     } else {
         arb.set_has_manifold(false);
@@ -559,42 +545,104 @@ const RECYCLE_COS: Scalar = Scalar::lit("0.98");
 /// state in the snapshot ([`Arbiter::rot_a0`] and the points' anchors and
 /// base separations), so a restore carries on exactly as stepping on does.
 #[inline(always)]
-fn recycle(p: &Arbiter, a: &Body, b: &Body, distance: Scalar) -> Option<Manifold> {
+fn recycle(p: &Arbiter, a: &Body, b: &Body, distance: Scalar, arb: &mut Arbiter) -> bool {
     if !p.has_manifold() || p.count == 0 || distance == ZERO_SCALAR {
-        return None;
+        return false;
     }
-    let da = a.rotation.compose(p.rot_a0.inverse());
-    let db = b.rotation.compose(p.rot_b0.inverse());
+    let da = composed(a.rotation, p.rot_a0.inverse());
+    let db = composed(b.rotation, p.rot_b0.inverse());
     if da.c <= RECYCLE_COS || db.c <= RECYCLE_COS {
-        return None;
+        return false;
     }
     let n = p.normal;
     let [o0, o1] = &p.points;
     let moved = |o: &ContactPoint| {
-        let pa = a.position + da.rotate(o.anchor_a);
-        let pb = b.position + db.rotate(o.anchor_b);
+        let pa = a.position + turned(da, o.anchor_a);
+        let pb = b.position + turned(db, o.anchor_b);
         (pa, pb, pb - pa)
     };
-    let (pa0, pb0, d0) = moved(o0);
+    let first = moved(o0);
+    let d0 = first.2;
     let turn = (da.c * db.s - da.s * db.c).abs();
     let reach = |x: &Body| if x.body_type == BodyType::Static { ZERO_SCALAR } else { x.radius };
     let ext = reach(a).max(reach(b));
     if d0.x.abs() + d0.y.abs() + (ext + ext) * turn >= distance {
-        return None;
+        return false;
     }
-    let point = |o: &ContactPoint, (pa, pb, d): (Vector2, Vector2, Vector2)| ManifoldPoint {
-        point: Vector2::new(half_sum(pa.x, pb.x), half_sum(pa.y, pb.y)),
-        anchor_a: o.anchor_a,
-        anchor_b: o.anchor_b,
-        separation: o.base_separation + d.dot(n),
-        id: o.id,
+    // The point as `set_manifold` would write it from the kept one: the
+    // warm start from the first previous point with its id (the kept
+    // points' own, unless both have one id), the step's totals cleared.
+    let point =
+        |o: &ContactPoint, carry: &ContactPoint, (pa, pb, d): (Vector2, Vector2, Vector2)| ContactPoint {
+            point: Vector2::new(half_sum(pa.x, pb.x), half_sum(pa.y, pb.y)),
+            separation: o.base_separation + along(d, n),
+            normal_impulse: carry.normal_impulse,
+            tangent_impulse: carry.tangent_impulse,
+            total_normal_impulse: ZERO_SCALAR,
+            max_normal_impulse: ZERO_SCALAR,
+            approach: 0,
+            ..*o
+        };
+    let p0 = point(o0, o0, first);
+    let p1 = if p.count >= 2 {
+        point(o1, if o0.id == o1.id { o0 } else { o1 }, moved(o1))
+    } else {
+        Arbiter::EMPTY.points[0]
     };
-    let second = if p.count >= 2 { point(o1, moved(o1)) } else { ManifoldPoint::ZERO };
-    Some(Manifold {
-        normal: n,
-        points: [point(o0, (pa0, pb0, d0)), second],
-        count: usize::from(p.count).min(2),
-    })
+    arb.points = [p0, p1];
+    arb.count = p.count.min(2);
+    arb.normal = n;
+    arb.rot_a0 = p.rot_a0;
+    arb.rot_b0 = p.rot_b0;
+    true
+}
+
+/// `q ∘ o` ([`Rot::compose`]'s bits), with the products that skip the
+/// saturation test when both parts of `q` are below 1 (a turned body).
+#[inline(always)]
+fn composed(q: Rot, o: Rot) -> Rot {
+    if below_one(q.c) && below_one(q.s) {
+        Rot {
+            c: mul_below_one(q.c, o.c) - mul_below_one(q.s, o.s),
+            s: mul_below_one(q.s, o.c) + mul_below_one(q.c, o.s),
+        }
+    } else {
+        q.compose(o)
+    }
+}
+
+/// `v` turned by `q` ([`Rot::rotate`]'s bits): the products that skip the
+/// saturation test when both parts of `q` are below 1, none for the
+/// identity (a body that has not turned since, such as the ground).
+#[inline(always)]
+fn turned(q: Rot, v: Vector2) -> Vector2 {
+    if below_one(q.c) && below_one(q.s) {
+        Vector2::new(
+            mul_below_one(q.c, v.x) - mul_below_one(q.s, v.y),
+            mul_below_one(q.s, v.x) + mul_below_one(q.c, v.y),
+        )
+    } else if q == Rot::IDENTITY {
+        v
+    } else {
+        q.rotate(v)
+    }
+}
+
+/// `d · n` ([`Vector2::dot`]'s bits): a component for a normal along an
+/// axis (a box on a box), the products without the saturation test for any
+/// other unit normal.
+#[inline(always)]
+fn along(d: Vector2, n: Vector2) -> Scalar {
+    match Direction::of(n) {
+        Direction::PosX => d.x + ZERO_SCALAR,
+        Direction::NegX => -d.x + ZERO_SCALAR,
+        Direction::PosY => ZERO_SCALAR + d.y,
+        Direction::NegY => ZERO_SCALAR + -d.y,
+        Direction::Any(n) if below_one(n.x) && below_one(n.y) => {
+            mul_below_one(n.x, d.x) + mul_below_one(n.y, d.y)
+        }
+        Direction::Any(n) => d.dot(n),
+    }
 }
 
 /// (x + y) / 2 without overflow.
@@ -1067,15 +1115,18 @@ pub(crate) fn end_arbiters_of_shape(
 fn lifecycle(
     arb: &mut Arbiter,
     old: Option<&Arbiter>,
-    m: &Manifold,
+    m: Option<&Manifold>,
     handlers: &mut HandlerTable<'_>,
     ctx: &mut CallbackContext<'_>,
     persistence: u32,
     events: &mut Events<'_>,
 ) -> bool {
     arb.solve = false;
-    if m.count > 0 {
-        set_manifold(arb, old, m);
+    // `None`: the points are already in `arb` (a recycled manifold).
+    if m.is_none_or(|m| m.count > 0) {
+        if let Some(m) = m {
+            set_manifold(arb, old, m);
+        }
         arb.reset_steps_separated();
         if matches!(arb.state, ArbiterState::NoCollision | ArbiterState::Separated) {
             arb.state = ArbiterState::FirstContact;
