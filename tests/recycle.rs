@@ -4,7 +4,9 @@
 //! world that computes every manifold.
 
 use arphysics::limits::DEFAULT_CONTACT_RECYCLE_DISTANCE;
-use arphysics::{BodyDef, Capacities, PolygonPath, Rect, Scalar, Vector2, World, WorldDef};
+use arphysics::{
+    BodyDef, Capacities, GravityForceGenerator, PolygonPath, Rect, Scalar, Vector2, World, WorldDef,
+};
 
 fn s(x: f64) -> Scalar {
     Scalar::from_num(x)
@@ -16,11 +18,13 @@ fn v(x: f64, y: f64) -> Vector2 {
 
 const DT: f64 = 1.0 / 60.0;
 
-/// A column of `n` unit boxes on a static ground, recycling at `distance`.
+/// A column of `n` unit boxes on a static ground under gravity (0, −10),
+/// recycling at `distance`.
 fn column(n: usize, distance: Scalar) -> World<'static> {
     let bounds = Rect::from_corners(v(-50.0, -10.0), v(50.0, 90.0));
     let def = WorldDef { contact_recycle_distance: distance, ..WorldDef::with_bounds(bounds) };
     let mut w = World::with_capacities(def, Capacities::for_bodies(64)).expect("world");
+    w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0))).expect("gravity");
     let ground = w.add_path(PolygonPath::rectangle(s(40.0), s(1.0)).expect("ground")).expect("path");
     w.add_body(BodyDef::polygon(ground).position(v(0.0, -0.5)).static_body()).expect("ground body");
     let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("path");

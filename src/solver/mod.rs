@@ -287,7 +287,10 @@ fn load(
         }
     }
     let scales = (ctx.contact_softness.mass_scale, ctx.static_softness.mass_scale);
-    colour::build(bodies, arbiters.live_mut(), solver, scales);
+    // The 2×2 block only where every manifold is computed every step (see
+    // `contact::prepare`).
+    let block = ctx.recycle_distance == Scalar::ZERO;
+    colour::build(bodies, arbiters.live_mut(), solver, scales, block);
 }
 
 /// Writes the solver's copy of every body the step moves back to the bodies
