@@ -32,7 +32,7 @@
 //!    shape slot, in body-slot order; a body's shape count is its list's
 //!    length, and one-shape bodies are in neither);
 //! 5. the generator allocator and the force generators;
-//! 6. the arbiters (58 bytes each: the pair, state and touching flag, steps since separation, and
+//! 6. the arbiters (58 bytes each: the pair, state with the touching and kept-manifold flags, steps since separation, and
 //!    per contact point its feature id and accumulated normal and friction
 //!    impulses); when an arbiter is for a chain link or a shape other than 0,
 //!    bit 31 of their count is set ([`ARBITER_LINKS`]) and the records are
