@@ -680,6 +680,9 @@ pub enum Op {
     SetJointTarget(HandleRef, Point),
     /// `set_substeps` with n % 20 (0 and 17 … 19 are out of range).
     SetSubsteps(u8),
+    /// `set_contact_recycle_distance` to (n % 32) cm (0 turns recycling off;
+    /// 26 … 31 cm are out of range).
+    SetContactRecycleDistance(u8),
     /// `add_chain` from the first 2 + n % 5 of the points (a loop if `closed`),
     /// then a static chain body on it (`BodyDef::chain`); the outcome is
     /// `add_chain`'s.
@@ -1544,6 +1547,11 @@ impl<'w> Runner<'w> {
                 unit_outcome(self.world.set_joint_target(h.get(&self.joints), p))
             }
             Op::SetSubsteps(n) => unit_outcome(self.world.set_substeps(u32::from(n % 20))),
+            Op::SetContactRecycleDistance(n) => {
+                unit_outcome(self.world.set_contact_recycle_distance(
+                    Scalar::from_int(i32::from(n % 32)) / Scalar::from_int(100),
+                ))
+            }
             Op::AddChain(points, n, closed) => {
                 let mut pts = [Vector2::ZERO; 6];
                 for (dst, &p) in pts.iter_mut().zip(points.iter()) {
