@@ -98,8 +98,7 @@ fn run_of(colour: u8) -> usize {
 }
 
 /// Colours the solved arbiters and prepares their lanes in run order.
-/// `scales` are the contact and static softness mass scales, `block` whether
-/// two-point manifolds get the 2×2 block (see `contact::prepare`). An arbiter with
+/// `scales` are the contact and static softness mass scales. An arbiter with
 /// no dynamic body (a frozen body on the ground) gets no lanes and stores no
 /// impulse. Never inlined: once a step, it gains nothing in the caller,
 /// and the caller's own inlining then moves with every change elsewhere
@@ -111,7 +110,6 @@ pub(crate) fn build(
     arbiters: &mut [Arbiter],
     solver: &mut Solver<'_>,
     scales: (Scalar, Scalar),
-    block: bool,
 ) {
     let mut counts = [0u32; RUNS];
     // Two-point manifolds per run: each run lays them out first, so that the
@@ -204,7 +202,7 @@ pub(crate) fn build(
         let sbodies: &[SolverBody] = &solver.bodies;
         let (Some(sa), Some(sb)) = (sbodies.get(ia as usize), sbodies.get(ib as usize)) else { continue };
         let Some(blk) = block_of(&mut solver.constraints, lane) else { continue };
-        scratch.mass = contact::prepare(arb, (ia, ib), (sa, sb), scales, block, blk, lane % LANES);
+        scratch.mass = contact::prepare(arb, (ia, ib), (sa, sb), scales, blk, lane % LANES);
     }
 }
 

@@ -17,14 +17,10 @@
 //! 3. solves the contacts as soft constraints (a spring-damper of
 //!    `contact_hertz` / `contact_damping_ratio` pushing overlap out at no more than
 //!    `contact_push_speed`; speculative points, still apart, only stop the bodies
-//!    from closing the gap within the sub-step), in one sweep, the points of a
-//!    two-point manifold one at a time in the sweep's direction, as Box2D v3
-//!    solves them, while the world recycles manifolds (the default; a kept
-//!    manifold's anchors hold a stack still, see `contact::prepare`), and
-//!    together as a 2×2 block where it computes every manifold every step (an
-//!    exact linear complementarity solve, as in Box2D v2.4, of the system
-//!    whose Gauss-Seidel step is Box2D v3's per-point soft update: each point
-//!    its own spring);
+//!    from closing the gap within the sub-step), in one sweep, with both points
+//!    of a two-point manifold solved together as a 2×2 block (an exact linear
+//!    complementarity solve, as in Box2D v2.4, of the system whose Gauss-Seidel
+//!    step is Box2D v3's per-point soft update: each point its own spring);
 //!    a point overlapping deeper than 10 cm is not pushed out by the spring's
 //!    velocity but by moving its bodies apart in the same sweep (Box2D v2.4's
 //!    position solver for those points only), so that bodies created or
@@ -291,10 +287,7 @@ fn load(
         }
     }
     let scales = (ctx.contact_softness.mass_scale, ctx.static_softness.mass_scale);
-    // The 2×2 block only where every manifold is computed every step (see
-    // `contact::prepare`).
-    let block = ctx.recycle_distance == Scalar::ZERO;
-    colour::build(bodies, arbiters.live_mut(), solver, scales, block);
+    colour::build(bodies, arbiters.live_mut(), solver, scales);
 }
 
 /// Writes the solver's copy of every body the step moves back to the bodies

@@ -1,16 +1,7 @@
 //! Building a contact's lane once per step: the arms in body radii, the mass
 //! ratios that replace every effective mass in the sweeps, the friction factor
-//! and, for a two-point manifold in a world that computes every manifold
-//! every step, the normalised inverse of its 2×2 mass matrix.
-//!
-//! **The block only without recycling.** With contact recycling (the
-//! default, [`WorldDef::contact_recycle_distance`](crate::WorldDef::contact_recycle_distance))
-//! a two-point manifold's points are solved one at a time, in the sweep's
-//! direction, as Box2D v3 solves them: a settled pair keeps its anchors, and
-//! the 20-box stack then stands without the block (top drift 0.00014 m in
-//! 10 s, limit 0.01), where anchors recomputed every step buckle it (0.316 m).
-//! A world that turns recycling off gets the block, which holds the stack at
-//! 0 m. Without it the 20-row pyramid runs 8 % fewer instructions a step.
+//! and, for a two-point manifold, the normalised inverse of its 2×2 mass
+//! matrix.
 //!
 //! For a row along direction d with arms r_A, r_B, k = 1/m_A + 1/m_B +
 //! (r_A×d)²/I_A + (r_B×d)²/I_B is the inverse of the mass the pair presents.
@@ -485,7 +476,6 @@ pub(crate) fn prepare(
     (ia, ib): (u32, u32),
     (sa, sb): (&SolverBody, &SolverBody),
     (contact_scale, static_scale): (Scalar, Scalar),
-    block: bool,
     blk: &mut Block,
     l: usize,
 ) -> [[Scalar; 2]; 2] {
@@ -537,10 +527,9 @@ pub(crate) fn prepare(
         let two = point::<{ f::P[1] }>(&shared, second, blk, l);
         masses[1] = two.masses;
         flags |= TWO_POINTS;
+        let k12 = pair.k12(one.arms_n, two.arms_n);
         let scale = if static_pair { static_scale } else { contact_scale };
-        let inverse =
-            || block_inverse([one.k_n, two.k_n], [one.r_n, two.r_n], pair.k12(one.arms_n, two.arms_n), scale);
-        if let Some(block) = if block { inverse() } else { None } {
+        if let Some(block) = block_inverse([one.k_n, two.k_n], [one.r_n, two.r_n], k12, scale) {
             flags |= HAS_BLOCK;
             for (fi, x) in [
                 f::C12,
