@@ -260,12 +260,6 @@ impl Arbiter {
         self.flags = (self.flags & !RECYCLE_FLAG) | if on { RECYCLE_FLAG } else { 0 };
     }
 
-    /// Drops the manifold cache: the next step computes the pair's manifold.
-    #[inline]
-    pub(crate) fn forget_manifold(&mut self) {
-        self.set_has_manifold(false);
-    }
-
     /// Sets whether the bodies touched at the end of the step.
     #[inline]
     pub(crate) fn set_touching(&mut self, on: bool) {

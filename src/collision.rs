@@ -21,8 +21,8 @@ use crate::body::{shape_aabb, Body, BodyHandle, BodyType, Shape, ShapeStore};
 use crate::collide::{
     collide_capsule_circle, collide_capsules, collide_chain_segment_capsule, collide_chain_segment_circle,
     collide_chain_segment_polygon, collide_circles, collide_polygon_capsule, collide_polygon_circle,
-    collide_polygons, collide_segment_capsule, collide_segment_circle, collide_segment_polygon, Direction,
-    Manifold, ManifoldPoint,
+    collide_polygons, collide_segment_capsule, collide_segment_circle, collide_segment_polygon, compose_fast,
+    dot_below_one, half, rotate_fast, Direction, Manifold, ManifoldPoint,
 };
 use crate::compound::{is_compound, shape_of, shapes_of, BodyShape, ShapeData, MAX_SHAPES_PER_BODY};
 use crate::constraint::{Joint, JointMarker};
@@ -37,7 +37,7 @@ use crate::index::{
 };
 use crate::limits::SPECULATIVE_DISTANCE;
 use crate::math::scalar::{below_one, mul_below_one, ZERO as ZERO_SCALAR};
-use crate::math::{Rect, Rot, Scalar, Transform, Vector2};
+use crate::math::{Rect, Scalar, Transform, Vector2};
 use crate::solver::SolverBody;
 use crate::step::StepContext;
 
@@ -500,8 +500,9 @@ fn update_pair<S: ShapeData>(
     let kept = lifecycle(arb, old, found, handlers, &mut ctx_cb, ctx.arbiter_persistence, events);
     if recycled {
         *recycled_count = recycled_count.saturating_add(1);
-    } else if manifold.count > 0 {
-        // Computed: the manifold to keep from now on.
+    } else if manifold.count > 0 && ctx.recycle_distance != ZERO_SCALAR {
+        // Computed: the manifold to keep from now on (none is kept while
+        // recycling is off, so no state outside the snapshot builds up).
         arb.rot_a0 = a.rotation;
         arb.rot_b0 = b.rotation;
         arb.set_has_manifold(true);
@@ -522,8 +523,8 @@ fn update_pair<S: ShapeData>(
 const RECYCLE_COS: Scalar = Scalar::lit("0.98");
 
 /// The previous step's manifold carried on to bodies `a`, `b` (in the
-/// arbiter's order) when they moved little since it was computed, or `None`
-/// to compute it. Contact recycling as Box2D v3 does it (Erin Catto, Box2D
+/// arbiter's order), written into `arb`, when they moved little since it
+/// was computed; false, leaving `arb` alone, to compute it. Contact recycling as Box2D v3 does it (Erin Catto, Box2D
 /// v3.2, `physics_world.c`, after PhysX's persistent manifolds): the normal,
 /// the anchors and the feature ids carry on, and each point's separation is
 /// its value when computed plus how far the two anchored material points
@@ -549,16 +550,16 @@ fn recycle(p: &Arbiter, a: &Body, b: &Body, distance: Scalar, arb: &mut Arbiter)
     if !p.has_manifold() || p.count == 0 || distance == ZERO_SCALAR {
         return false;
     }
-    let da = composed(a.rotation, p.rot_a0.inverse());
-    let db = composed(b.rotation, p.rot_b0.inverse());
+    let da = compose_fast(a.rotation, p.rot_a0.inverse());
+    let db = compose_fast(b.rotation, p.rot_b0.inverse());
     if da.c <= RECYCLE_COS || db.c <= RECYCLE_COS {
         return false;
     }
     let n = p.normal;
     let [o0, o1] = &p.points;
     let moved = |o: &ContactPoint| {
-        let pa = a.position + turned(da, o.anchor_a);
-        let pb = b.position + turned(db, o.anchor_b);
+        let pa = a.position + rotate_fast(da, o.anchor_a);
+        let pb = b.position + rotate_fast(db, o.anchor_b);
         (pa, pb, pb - pa)
     };
     let first = moved(o0);
@@ -574,7 +575,7 @@ fn recycle(p: &Arbiter, a: &Body, b: &Body, distance: Scalar, arb: &mut Arbiter)
     // points' own, unless both have one id), the step's totals cleared.
     let point =
         |o: &ContactPoint, carry: &ContactPoint, (pa, pb, d): (Vector2, Vector2, Vector2)| ContactPoint {
-            point: Vector2::new(half_sum(pa.x, pb.x), half_sum(pa.y, pb.y)),
+            point: Vector2::new(half(pa.x + pb.x), half(pa.y + pb.y)),
             separation: o.base_separation + along(d, n),
             normal_impulse: carry.normal_impulse,
             tangent_impulse: carry.tangent_impulse,
@@ -597,37 +598,6 @@ fn recycle(p: &Arbiter, a: &Body, b: &Body, distance: Scalar, arb: &mut Arbiter)
     true
 }
 
-/// `q ∘ o` ([`Rot::compose`]'s bits), with the products that skip the
-/// saturation test when both parts of `q` are below 1 (a turned body).
-#[inline(always)]
-fn composed(q: Rot, o: Rot) -> Rot {
-    if below_one(q.c) && below_one(q.s) {
-        Rot {
-            c: mul_below_one(q.c, o.c) - mul_below_one(q.s, o.s),
-            s: mul_below_one(q.s, o.c) + mul_below_one(q.c, o.s),
-        }
-    } else {
-        q.compose(o)
-    }
-}
-
-/// `v` turned by `q` ([`Rot::rotate`]'s bits): the products that skip the
-/// saturation test when both parts of `q` are below 1, none for the
-/// identity (a body that has not turned since, such as the ground).
-#[inline(always)]
-fn turned(q: Rot, v: Vector2) -> Vector2 {
-    if below_one(q.c) && below_one(q.s) {
-        Vector2::new(
-            mul_below_one(q.c, v.x) - mul_below_one(q.s, v.y),
-            mul_below_one(q.s, v.x) + mul_below_one(q.c, v.y),
-        )
-    } else if q == Rot::IDENTITY {
-        v
-    } else {
-        q.rotate(v)
-    }
-}
-
 /// `d · n` ([`Vector2::dot`]'s bits): a component for a normal along an
 /// axis (a box on a box), the products without the saturation test for any
 /// other unit normal.
@@ -638,17 +608,9 @@ fn along(d: Vector2, n: Vector2) -> Scalar {
         Direction::NegX => -d.x + ZERO_SCALAR,
         Direction::PosY => ZERO_SCALAR + d.y,
         Direction::NegY => ZERO_SCALAR + -d.y,
-        Direction::Any(n) if below_one(n.x) && below_one(n.y) => {
-            mul_below_one(n.x, d.x) + mul_below_one(n.y, d.y)
-        }
+        Direction::Any(n) if below_one(n.x) && below_one(n.y) => dot_below_one(n, d),
         Direction::Any(n) => d.dot(n),
     }
-}
-
-/// (x + y) / 2 without overflow.
-#[inline]
-fn half_sum(x: Scalar, y: Scalar) -> Scalar {
-    Scalar::from_bits((x.to_bits() >> 1) + (y.to_bits() >> 1) + (x.to_bits() & y.to_bits() & 1))
 }
 
 /// The candidate keys in order: each candidate body pair's key with link 0,

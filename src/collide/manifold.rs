@@ -170,6 +170,32 @@ pub(crate) fn rotate_by(q: Rot, v: Vector2, mul: impl Product) -> Vector2 {
     Vector2::new(mul.mul(q.c, v.x) - mul.mul(q.s, v.y), mul.mul(q.s, v.x) + mul.mul(q.c, v.y))
 }
 
+/// `q.rotate(v)` with the cheapest product `q`'s components allow
+/// ([`mul_below_one`] when both are below 1, none for the identity): the
+/// same bits.
+#[inline(always)]
+pub(crate) fn rotate_fast(q: Rot, v: Vector2) -> Vector2 {
+    if below_one(q.c) && below_one(q.s) {
+        rotate_by(q, v, BelowOne)
+    } else if q == Rot::IDENTITY {
+        v
+    } else {
+        q.rotate(v)
+    }
+}
+
+/// `q.compose(o)` with [`mul_below_one`] when both of `q`'s components are
+/// below 1 (a turned body): the same bits.
+#[inline(always)]
+pub(crate) fn compose_fast(q: Rot, o: Rot) -> Rot {
+    if below_one(q.c) && below_one(q.s) {
+        let m = BelowOne;
+        Rot { c: m.mul(q.c, o.c) - m.mul(q.s, o.s), s: m.mul(q.s, o.c) + m.mul(q.c, o.s) }
+    } else {
+        q.compose(o)
+    }
+}
+
 /// `xf.inv_mul(other)`: `other` in `xf`'s frame, `(q⁻¹·(p' − p), q⁻¹∘q')`, the
 /// same bits. Every product has a component of `xf.q` (or its negated sine)
 /// as a factor, so when both are below 1 (a turned body) the products skip

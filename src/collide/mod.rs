@@ -48,6 +48,7 @@ pub use chain_segment::{
     CHAIN_FACE_SINE,
 };
 pub use circle_circle::collide_circles;
+pub(crate) use manifold::{compose_fast, dot_below_one, half, rotate_fast};
 pub use manifold::{Manifold, ManifoldPoint, MAX_MANIFOLD_POINTS};
 pub use polygon_capsule::{collide_polygon_capsule, collide_segment_polygon};
 pub use polygon_circle::collide_polygon_circle;

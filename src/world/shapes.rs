@@ -386,7 +386,7 @@ impl World<'_> {
         // contacts keep no longer describe it (see `collision::recycle`).
         for a in self.arbiters.live_mut() {
             if a.body_a == h || a.body_b == h {
-                a.forget_manifold();
+                a.set_has_manifold(false);
             }
         }
         Ok(())
