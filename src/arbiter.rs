@@ -102,6 +102,11 @@ pub struct ContactPoint {
     // The approach speed along the normal at the start of the step, Q16.16
     // (derived, per step, for the contact hit event; in what was padding).
     pub(crate) approach: i32,
+    // The point was carried on from an earlier step's manifold (recycled)
+    // rather than computed in this one (derived, per step, set by the
+    // lifecycle before the solve reads it: `contact::prepare` gives only a
+    // computed manifold the 2×2 block; in what was padding).
+    pub(crate) recycled: bool,
     /// The separation when the manifold was last computed (m): a recycled
     /// point's separation is this plus how far its anchored points moved
     /// apart along the normal since. State while the manifold is kept.
@@ -190,6 +195,7 @@ impl Arbiter {
             anchor_a: Vector2::ZERO,
             anchor_b: Vector2::ZERO,
             approach: 0,
+            recycled: false,
             base_separation: ZERO,
         }; 2],
         count: 0,

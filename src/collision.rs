@@ -582,6 +582,7 @@ fn recycle(p: &Arbiter, a: &Body, b: &Body, distance: Scalar, arb: &mut Arbiter)
             total_normal_impulse: ZERO_SCALAR,
             max_normal_impulse: ZERO_SCALAR,
             approach: 0,
+            recycled: true,
             ..*o
         };
     let p0 = point(o0, o0, first);
@@ -1154,6 +1155,7 @@ fn set_manifold(arb: &mut Arbiter, old: Option<&Arbiter>, m: &Manifold) {
         anchor_a: s.anchor_a,
         anchor_b: s.anchor_b,
         approach: 0,
+        recycled: false,
         base_separation: s.separation,
     };
     let empty = Arbiter::EMPTY.points[0];

@@ -17,10 +17,15 @@
 //! 3. solves the contacts as soft constraints (a spring-damper of
 //!    `contact_hertz` / `contact_damping_ratio` pushing overlap out at no more than
 //!    `contact_push_speed`; speculative points, still apart, only stop the bodies
-//!    from closing the gap within the sub-step), in one sweep, with both points
-//!    of a two-point manifold solved together as a 2×2 block (an exact linear
-//!    complementarity solve, as in Box2D v2.4, of the system whose Gauss-Seidel
-//!    step is Box2D v3's per-point soft update: each point its own spring);
+//!    from closing the gap within the sub-step), in one sweep. Both points of
+//!    a two-point manifold computed this step are solved together as a 2×2
+//!    block (an exact linear complementarity solve, as in Box2D v2.4, of the
+//!    system whose Gauss-Seidel step is Box2D v3's per-point soft update: each
+//!    point its own spring); those of a manifold recycled from an earlier step
+//!    one at a time in the sweep's direction, as Box2D v3 solves every
+//!    manifold (a settled pair: its kept anchors hold a stack still, and an
+//!    impact, whose manifold is new, still gets the exact solve; see
+//!    `contact::prepare`);
 //!    a point overlapping deeper than 10 cm is not pushed out by the spring's
 //!    velocity but by moving its bodies apart in the same sweep (Box2D v2.4's
 //!    position solver for those points only), so that bodies created or

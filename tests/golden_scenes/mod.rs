@@ -24,17 +24,17 @@ use arphysics::{
 /// change to one must be deliberate and explained in its commit message.
 pub const GOLDEN_CORE_SCENE: u64 = 0x15a8_0816_0205_631d;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_PYRAMID: u64 = 0xed7d_6276_0308_78da;
+pub const GOLDEN_PYRAMID: u64 = 0x1abe_4b52_b9d5_ae3e;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_MIXED: u64 = 0xe7b4_8830_3f6c_3606;
+pub const GOLDEN_MIXED: u64 = 0x40c0_f08f_c3e5_d04d;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_LONG: u64 = 0xb4f2_a125_5153_1800;
+pub const GOLDEN_LONG: u64 = 0xc1a9_ccdd_95ad_9e5c;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_SHAPES: u64 = 0x0a53_6d5a_c8dc_6637;
+pub const GOLDEN_SHAPES: u64 = 0xe8de_ab9d_1e1b_f581;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_COMPOUND: u64 = 0x47ad_917e_1738_0ae7;
+pub const GOLDEN_COMPOUND: u64 = 0xac91_da41_b84e_4742;
 /// See [`GOLDEN_CORE_SCENE`].
-pub const GOLDEN_BANDED: u64 = 0x3f86_5826_6d1f_3989;
+pub const GOLDEN_BANDED: u64 = 0x8fd9_4f41_ad09_def1;
 /// See [`GOLDEN_CORE_SCENE`].
 pub const GOLDEN_PIVOT_NET: u64 = 0xad8f_ff65_f563_4da4;
 
