@@ -476,12 +476,15 @@ pub(crate) struct ArbiterStore<'a> {
     live: ManagedSlice<'a, Arbiter>,
     next: ManagedSlice<'a, Arbiter>,
     count: usize,
+    /// The live arbiters are where the solver's last constraint build found
+    /// them (see [`ArbiterStore::built`]). Not state: a cache's validity.
+    built: bool,
 }
 
 impl<'a> ArbiterStore<'a> {
     /// An empty store on two buffers of equal length.
     pub(crate) fn new(live: ManagedSlice<'a, Arbiter>, next: ManagedSlice<'a, Arbiter>) -> Self {
-        Self { live, next, count: 0 }
+        Self { live, next, count: 0, built: false }
     }
 
     /// How many arbiters fit.
@@ -515,6 +518,22 @@ impl<'a> ArbiterStore<'a> {
     pub(crate) fn swap_in_next(&mut self, count: usize) {
         core::mem::swap(&mut self.live, &mut self.next);
         self.count = count.min(self.live.len());
+        self.built = false;
+    }
+
+    /// Whether each live arbiter is at the position it had when the solver
+    /// last built its constraints (the solver's per-arbiter scratch then
+    /// still describes it: see `solver::colour::build`). Every change of the
+    /// positions clears it (a merge, a removal, a restore); only
+    /// [`ArbiterStore::mark_built`] sets it.
+    pub(crate) fn built(&self) -> bool {
+        self.built
+    }
+
+    /// Notes that the solver has just built the constraints of the live
+    /// arbiters, in their present positions.
+    pub(crate) fn mark_built(&mut self) {
+        self.built = true;
     }
 
     /// Keeps the live arbiters for which `keep` returns true, in order.
@@ -536,12 +555,16 @@ impl<'a> ArbiterStore<'a> {
             }
             out = out.saturating_add(1);
         }
+        if out != self.count {
+            self.built = false;
+        }
         self.count = out;
     }
 
     /// Empties the live set (a restore refills it with [`ArbiterStore::push`]).
     pub(crate) fn clear(&mut self) {
         self.count = 0;
+        self.built = false;
     }
 
     /// Appends an arbiter to the live set, which must stay in key order (a
@@ -554,6 +577,7 @@ impl<'a> ArbiterStore<'a> {
             Some(slot) => {
                 *slot = arb;
                 self.count = self.count.saturating_add(1);
+                self.built = false;
                 true
             }
             None => false,

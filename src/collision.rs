@@ -38,7 +38,7 @@ use crate::index::{
 use crate::limits::SPECULATIVE_DISTANCE;
 use crate::math::scalar::{below_one, mul_below_one, ZERO as ZERO_SCALAR};
 use crate::math::{Rect, Scalar, Transform, Vector2};
-use crate::solver::SolverBody;
+use crate::solver::{ContactScratch, SolverBody};
 use crate::step::StepContext;
 
 /// The broad phase a world uses.
@@ -340,7 +340,11 @@ pub(crate) fn update_arbiters(
     handlers: &mut HandlerTable<'_>,
     post_step: &mut PostStepQueue<'_>,
     events: &mut Events<'_>,
+    scratch: &mut [ContactScratch],
 ) -> Updated {
+    // Whether the solver's scratch still lines up with the live arbiters
+    // (read before the merge moves them).
+    let built = arbiters.built();
     let (live, next) = arbiters.live_and_next();
     // Each arbiter is built in its output slot (a 304-byte record copied once,
     // not at every hand-over); a dropped one leaves `out` where it was, so
@@ -363,6 +367,8 @@ pub(crate) fn update_arbiters(
         if candidate {
             keys.advance();
         }
+        // The previous arbiter's position.
+        let at = j;
         if previous.is_some() {
             j = j.saturating_add(1);
         }
@@ -388,7 +394,13 @@ pub(crate) fn update_arbiters(
             let (Some(sx), Some(sy)) = (shape_of(ba, lo, paths), shape_of(bb, hi, paths)) else { continue };
             update_pair(&mut pass, (link, candidate, previous), arb, (ha, ba, &sx, lo), (hb, bb, &sy, hi))
         };
-        if keep {
+        if keep != Verdict::Drop {
+            // Its lane from the last build can be kept (see
+            // `solver::colour::build`) when its scratch record is still its
+            // own: the arbiter it continues was built at this same position.
+            if let Some(s) = scratch.get_mut(out) {
+                s.reuse = built && at == out && keep == Verdict::KeepSame;
+            }
             out = out.saturating_add(1);
         }
     }
@@ -428,7 +440,7 @@ fn update_pair<S: ShapeData>(
     arb: &mut Arbiter,
     x: (BodyHandle, &Body, &S, u32),
     y: (BodyHandle, &Body, &S, u32),
-) -> bool {
+) -> Verdict {
     let PairPass { ctx, bodies, paths, handlers, post_step, events, recycled: recycled_count } = pass;
     let (ha, ba, sx) = (x.0, x.1, x.2);
     let (hb, bb, sy) = (y.0, y.1, y.2);
@@ -440,7 +452,7 @@ fn update_pair<S: ShapeData>(
         arb.count = 0;
         arb.set_touching(false);
         // A candidate key passed the filters (see `near` below).
-        return candidate || arb.state == ArbiterState::Contact;
+        return if candidate || arb.state == ArbiterState::Contact { Verdict::Keep } else { Verdict::Drop };
     }
     // The previous arbiter when it names these same bodies (as
     // [`pair_arbiter`] decides), and the body order the arbiter has.
@@ -513,9 +525,26 @@ fn update_pair<S: ShapeData>(
         if arb.count > 0 && arb.state == ArbiterState::Contact && !arb.is_touching() {
             approach(arb, a, b);
         }
-        return true;
+        // What its lane was built from is unchanged but the bodies' masses.
+        return if recycled && old.is_some_and(|p| p.friction == arb.friction) {
+            Verdict::KeepSame
+        } else {
+            Verdict::Keep
+        };
     }
-    false
+    Verdict::Drop
+}
+
+/// What [`update_pair`] decided for an arbiter.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Verdict {
+    /// Dropped.
+    Drop,
+    /// Kept.
+    Keep,
+    /// Kept, with its manifold recycled and its friction unchanged: its lane
+    /// can be kept if the bodies' masses are too (see `solver::colour::build`).
+    KeepSame,
 }
 
 /// Cosine of the most either body may turn before its manifold is computed

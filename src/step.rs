@@ -230,6 +230,7 @@ pub(crate) fn run(ctx: &StepContext, p: StepParts<'_, '_>) -> Result<StepReport,
         p.handlers,
         p.post_step,
         p.events,
+        &mut p.solver.scratch,
     );
     solver::solve(ctx, p.bodies, p.arbiters, p.joints, p.constraints, p.solver);
     let ccd =

@@ -217,3 +217,106 @@ fn a_flat_impact_ends_its_step_on_the_face_and_bounces_back_square() {
         assert!(spin.abs() * 0.75 < 0.005 * speed, "{speed} m/s: spins at {spin} rad/s");
     }
 }
+
+/// A settled pair whose manifold is recycled keeps the lane the solver built
+/// for it last step (only the per-step fields are written again), so long as
+/// its masses and friction are unchanged. Each change below, made between
+/// steps, must rebuild the lanes it touches: the world that made it steps
+/// exactly as a copy restored from a snapshot taken just after it (a restore
+/// rebuilds every lane), and differently from a world that did not make it.
+/// Removing a body moves the arbiters after its own down the list: none of
+/// them may take a lane built for another.
+#[test]
+fn kept_lanes_step_as_rebuilt_ones_across_mass_friction_and_type_changes() {
+    use arphysics::{BodyHandle, MassSpec};
+    type Change = fn(&mut World<'static>, &[BodyHandle]);
+    let changes: [(&str, Change); 8] = [
+        // Every other arbiter moves down the list, and its lane with it.
+        ("removal", |w, b| {
+            w.remove_body(b[6]).expect("remove");
+        }),
+        ("mass", |w, b| w.set_mass(b[2], MassSpec::Mass(s(7.0))).expect("mass")),
+        ("friction", |w, b| w.set_friction(b[3], s(0.05)).expect("friction")),
+        ("restitution", |w, b| w.set_restitution(b[1], s(0.4)).expect("restitution")),
+        ("fixed rotation", |w, b| w.set_fixed_rotation(b[4], true).expect("fixed")),
+        ("static", |w, b| w.set_static(b[3]).expect("static")),
+        ("dynamic", |w, b| w.set_dynamic(b[3], MassSpec::Density(s(2.0))).expect("dynamic")),
+        ("density", |w, b| w.set_mass(b[0], MassSpec::Density(s(3.0))).expect("density")),
+    ];
+    let build = || {
+        let mut w = column(0, DEFAULT_CONTACT_RECYCLE_DISTANCE);
+        let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("path");
+        // A box on its own, made first: its pair with the ground comes first
+        // in key order.
+        let alone = w.add_body(BodyDef::polygon(unit).position(v(-10.0, 0.5))).expect("box");
+        // The column leans slightly, so that friction and turning matter.
+        let mut boxes: Vec<BodyHandle> = (0..6)
+            .map(|i| {
+                let def = BodyDef::polygon(unit).position(v(0.02 * f64::from(i), 0.5 + f64::from(i)));
+                w.add_body(def).expect("box")
+            })
+            .collect();
+        boxes.push(alone);
+        (w, boxes)
+    };
+    let (mut w, boxes) = build();
+    for _ in 0..120 {
+        w.step(s(DT)).expect("step");
+    }
+    let restored_from = |w: &World<'static>| {
+        let mut snap = vec![0u8; w.snapshot_len()];
+        w.snapshot(&mut snap).expect("snapshot");
+        let (mut copy, _) = build();
+        copy.restore(&snap).expect("restore");
+        copy
+    };
+    for (name, change) in changes {
+        let mut unchanged = restored_from(&w);
+        change(&mut w, &boxes);
+        let mut restored = restored_from(&w);
+        for step in 0..20 {
+            let (a, b) = (w.step(s(DT)).expect("step"), restored.step(s(DT)).expect("step"));
+            unchanged.step(s(DT)).expect("step");
+            assert!(a.manifolds_recycled > 0, "{name}: step {step} recycled nothing");
+            assert_eq!(a.manifolds_recycled, b.manifolds_recycled, "{name}: step {step}");
+            assert_eq!(w.state_hash(), restored.state_hash(), "{name}: step {step}");
+        }
+        assert_ne!(w.state_hash(), unchanged.state_hash(), "{name}: the change changed nothing");
+    }
+}
+
+/// A box sliding on the ground keeps its manifold for most steps (it moves
+/// 1 to 4 cm a step) with its friction at the cap. Its friction changed
+/// before every step, the world steps exactly as one that rebuilds every
+/// lane (restoring itself from a snapshot after each change).
+#[test]
+fn a_friction_change_rebuilds_a_kept_lane() {
+    let build = || {
+        let mut w = column(0, DEFAULT_CONTACT_RECYCLE_DISTANCE);
+        let unit = w.add_path(PolygonPath::rectangle(s(1.0), s(1.0)).expect("box")).expect("path");
+        let def = BodyDef::polygon(unit).position(v(0.0, 0.5)).linear_velocity(v(2.5, 0.0)).friction(s(0.05));
+        let slider = w.add_body(def).expect("slider");
+        (w, slider)
+    };
+    let (mut kept, slider) = build();
+    let (mut rebuilt, _) = build();
+    let mut snap = Vec::new();
+    let mut recycled = 0;
+    for step in 0..60 {
+        let mu = s(if step % 2 == 0 { 0.05 } else { 0.07 });
+        kept.set_friction(slider, mu).expect("friction");
+        // (A restore hands out new handles: the slider is the last body.)
+        let last = rebuilt.bodies().map(|(h, _)| h).last().expect("slider");
+        rebuilt.set_friction(last, mu).expect("friction");
+        snap.resize(rebuilt.snapshot_len(), 0);
+        rebuilt.snapshot(&mut snap).expect("snapshot");
+        rebuilt.restore(&snap).expect("restore");
+        let (a, b) = (kept.step(s(DT)).expect("step"), rebuilt.step(s(DT)).expect("step"));
+        assert_eq!(a.manifolds_recycled, b.manifolds_recycled, "step {step}");
+        recycled += a.manifolds_recycled;
+        assert_eq!(kept.state_hash(), rebuilt.state_hash(), "step {step}");
+    }
+    let vx = kept.body(slider).expect("slider").linear_velocity().x.to_num::<f64>();
+    assert!(vx > 0.3, "still sliding after 1 s ({vx} m/s)");
+    assert!(recycled >= 20, "the slide kept its manifold in {recycled} of 60 steps");
+}

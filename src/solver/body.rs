@@ -55,6 +55,10 @@ impl Default for BodyLanes {
     }
 }
 
+/// A body's inverse mass, rim inverse mass, inverse radius and dynamic flag:
+/// what [`SolverBody::same_mass`] compares.
+pub(crate) type MassKey = (Scalar, Scalar, Scalar, bool);
+
 /// A body's state as the solver sees it during a step (solver scratch, one per
 /// body slot; see [`Storage`](crate::Storage)).
 ///
@@ -111,6 +115,10 @@ pub struct SolverBody {
     /// The lanes hold what [`push`](Self::push) last made of the `Scalar`
     /// velocity (no [`pull`](Self::pull) has changed it since).
     pub(crate) pushed: bool,
+    /// Its inverse mass, rim inverse mass, radius and dynamic flag are those
+    /// of the last step's load of this slot (see `colour::build`, which then
+    /// keeps a lane built from them).
+    pub(crate) same_mass: bool,
     /// Continuous collision's marks (see [`crate::continuous`]).
     pub(crate) ccd: u8,
     /// Continuous collision's earliest time of impact this step (1: none).
@@ -143,17 +151,33 @@ impl SolverBody {
         moves: false,
         dynamic: false,
         pushed: false,
+        same_mass: false,
         ccd: 0,
         toi: Scalar::ONE,
     };
+
+    /// What a contact's lane is built from of this body (see
+    /// [`SolverBody::same_mass`]).
+    #[inline]
+    pub(crate) fn mass_key(&self) -> MassKey {
+        (self.inv_mass, self.rim_inv_mass, self.inv_radius, self.dynamic)
+    }
 
     /// Loads a body's state; `inv_n` is 1 / sub-steps, `h` the sub-step (s),
     /// `wmax` the step's angular speed limit. A frozen (out of bounds) body is
     /// loaded as a static one: no forces, no impulses, not integrated. A
     /// fixed-rotation body is loaded with no spin and an angular limit of 0,
-    /// which the integration's clamp holds it to.
+    /// which the integration's clamp holds it to. `prev` is the slot's last
+    /// load, for [`SolverBody::same_mass`].
     #[inline]
-    pub(crate) fn load(b: &Body, inv_n: Scalar, h: Scalar, wmax: Scalar, lane: &mut BodyLanes) -> Self {
+    pub(crate) fn load(
+        b: &Body,
+        inv_n: Scalar,
+        h: Scalar,
+        wmax: Scalar,
+        lane: &mut BodyLanes,
+        prev: &MassKey,
+    ) -> Self {
         let radius = b.radius.max(MIN_RADIUS);
         let inv_radius = radius.recip();
         let dynamic = b.is_dynamic() && !b.out_of_bounds;
@@ -184,9 +208,11 @@ impl SolverBody {
             moves: b.moved_by_step(),
             dynamic,
             pushed: false,
+            same_mass: false,
             ccd: 0,
             toi: Scalar::ONE,
         };
+        sb.same_mass = sb.mass_key() == *prev;
         if dynamic {
             (sb.force_dv, sb.force_dw) = (b.force_dv * inv_n, b.force_dw * inv_n);
             if b.linear_damping != ZERO || b.angular_damping != ZERO {

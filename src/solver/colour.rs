@@ -13,6 +13,18 @@
 //! live arbiters, their `solve` flags and the bodies' types and frozen flags:
 //! all restored by a snapshot or derived from it, so nothing is added to it.
 //!
+//! An arbiter whose manifold was recycled, whose friction and bodies' masses
+//! are unchanged and that gets the lane it had in the last build keeps what
+//! that build wrote there (see `contact::prepare`): the lifecycle marks the
+//! arbiters whose scratch record is still their own
+//! ([`ContactScratch::reuse`](super::ContactScratch): the arbiter list has
+//! not moved since the build, [`ArbiterStore::built`](crate::arbiter::ArbiterStore::built),
+//! and the arbiter is at the position of the one it continues), the load
+//! marks the bodies whose masses are unchanged ([`SolverBody::same_mass`]),
+//! and an arbiter left without a lane has its record's lane cleared. A
+//! restore, a removal or any other change of the arbiter list rebuilds every
+//! lane.
+//!
 //! The lanes are laid out in run order, the overflow first and then colours
 //! 0 to 22, the overflow's constraints in key order and each colour's
 //! two-point manifolds before its one-point ones, each in key order (a
@@ -27,7 +39,7 @@ use crate::arena::Arena;
 use crate::body::Body;
 use crate::math::scalar::{Scalar, ZERO};
 
-use super::contact::{self, Block};
+use super::contact::{self, Block, NO_LANE};
 use super::lanes::{LANES, M};
 use super::{BodyLanes, Solver, SolverBody, Sweep};
 
@@ -183,6 +195,7 @@ pub(crate) fn build(
     let ends = [solver.ranges.map(|r| r.1), solver.ranges.map(|r| r.1)];
     for (arb, scratch) in arbiters.iter().zip(solver.scratch.iter_mut()) {
         if scratch.colour == NONE {
+            scratch.lane = NO_LANE;
             continue;
         }
         let run = run_of(scratch.colour);
@@ -191,8 +204,13 @@ pub(crate) fn build(
         let (Some(at), Some(&end)) = (cursor[kind].get_mut(run), ends[kind].get(run)) else { continue };
         if *at >= end {
             scratch.colour = NONE;
+            scratch.lane = NO_LANE;
             continue;
         }
+        // The lane it had in the last build, holding what that build wrote
+        // from the same manifold, friction and masses (see `ContactScratch::reuse`):
+        // only what changes from step to step is written again.
+        let same_lane = scratch.reuse && scratch.lane == *at;
         scratch.lane = *at;
         let lane = *at as usize;
         *at += 1;
@@ -202,7 +220,10 @@ pub(crate) fn build(
         let sbodies: &[SolverBody] = &solver.bodies;
         let (Some(sa), Some(sb)) = (sbodies.get(ia as usize), sbodies.get(ib as usize)) else { continue };
         let Some(blk) = block_of(&mut solver.constraints, lane) else { continue };
-        scratch.mass = contact::prepare(arb, (ia, ib), (sa, sb), scales, blk, lane % LANES);
+        let keep = same_lane && sa.same_mass && sb.same_mass;
+        if let Some(mass) = contact::prepare(arb, (ia, ib), (sa, sb), scales, keep, blk, lane % LANES) {
+            scratch.mass = mass;
+        }
     }
 }
 

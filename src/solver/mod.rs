@@ -288,11 +288,13 @@ fn load(
     for (i, b) in bodies.iter() {
         let k = i.index() as usize;
         if let (Some(sb), Some(lane)) = (sbodies.get_mut(k), lanes.get_mut(k)) {
-            *sb = SolverBody::load(b, ctx.inv_substeps, ctx.h, ctx.max_angular_speed, lane);
+            let prev = sb.mass_key();
+            *sb = SolverBody::load(b, ctx.inv_substeps, ctx.h, ctx.max_angular_speed, lane, &prev);
         }
     }
     let scales = (ctx.contact_softness.mass_scale, ctx.static_softness.mass_scale);
     colour::build(bodies, arbiters.live_mut(), solver, scales);
+    arbiters.mark_built();
 }
 
 /// Writes the solver's copy of every body the step moves back to the bodies

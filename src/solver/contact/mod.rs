@@ -35,6 +35,12 @@ use crate::math::scalar::{Scalar, ZERO};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ContactScratch {
     pub(crate) colour: u8,
+    /// Set by the lifecycle: the arbiter's manifold was recycled, its
+    /// friction is unchanged and it is at the position of the arbiter it
+    /// continues, so this record still holds its last build (see
+    /// `colour::build`; in what was padding).
+    pub(crate) reuse: bool,
+    /// The lane, or [`NO_LANE`] when the arbiter got none.
     pub(crate) lane: u32,
     /// Normal and tangent effective mass of each point (kg).
     pub(crate) mass: [[Scalar; 2]; 2],
@@ -42,8 +48,11 @@ pub struct ContactScratch {
 
 impl ContactScratch {
     /// An unused record.
-    pub const EMPTY: Self = Self { colour: 0, lane: 0, mass: [[ZERO; 2]; 2] };
+    pub const EMPTY: Self = Self { colour: 0, reuse: false, lane: NO_LANE, mass: [[ZERO; 2]; 2] };
 }
+
+/// [`ContactScratch::lane`] of an arbiter without a lane.
+pub(crate) const NO_LANE: u32 = u32::MAX;
 
 impl Default for ContactScratch {
     fn default() -> Self {
