@@ -211,15 +211,18 @@ pub(crate) fn build(
         // from the same manifold, friction and masses (see `ContactScratch::reuse`):
         // only what changes from step to step is written again.
         let same_lane = scratch.reuse && scratch.lane == *at;
-        scratch.lane = *at;
         let lane = *at as usize;
         *at += 1;
+        // (A lane left unbuilt is recorded as none, so that no later build
+        // keeps what it holds.)
+        scratch.lane = NO_LANE;
         // The first pass checked both handles (a coloured arbiter's bodies
         // are live): by slot, without the tag and generation tests again.
         let (ia, ib) = (arb.body_a.index(), arb.body_b.index());
         let sbodies: &[SolverBody] = &solver.bodies;
         let (Some(sa), Some(sb)) = (sbodies.get(ia as usize), sbodies.get(ib as usize)) else { continue };
         let Some(blk) = block_of(&mut solver.constraints, lane) else { continue };
+        scratch.lane = lane as u32;
         let keep = same_lane && sa.same_mass && sb.same_mass;
         if let Some(mass) = contact::prepare(arb, (ia, ib), (sa, sb), scales, keep, blk, lane % LANES) {
             scratch.mass = mass;
