@@ -602,25 +602,35 @@ fn recycle(p: &Arbiter, a: &Body, b: &Body, distance: Scalar, arb: &mut Arbiter)
     // The point as `set_manifold` would write it from the kept one: the
     // warm start from the first previous point with its id (the kept
     // points' own, unless both have one id), the step's totals cleared.
-    let point =
-        |o: &ContactPoint, carry: &ContactPoint, (pa, pb, d): (Vector2, Vector2, Vector2)| ContactPoint {
+    let point = |dst: &mut ContactPoint,
+                 o: &ContactPoint,
+                 carry: &ContactPoint,
+                 (pa, pb, d): (Vector2, Vector2, Vector2)| {
+        // Every field named (no `..`), written into the arbiter in place:
+        // built whole and then copied, the points cost the 20-row pyramid
+        // 0.9 % more instructions.
+        *dst = ContactPoint {
             point: Vector2::new(half(pa.x + pb.x), half(pa.y + pb.y)),
             separation: o.base_separation + along(d, n),
+            id: o.id,
             normal_impulse: carry.normal_impulse,
             tangent_impulse: carry.tangent_impulse,
             total_normal_impulse: ZERO_SCALAR,
             max_normal_impulse: ZERO_SCALAR,
+            anchor_a: o.anchor_a,
+            anchor_b: o.anchor_b,
             approach: 0,
             recycled: true,
-            ..*o
+            base_separation: o.base_separation,
         };
-    let p0 = point(o0, o0, first);
-    let p1 = if p.count >= 2 {
-        point(o1, if o0.id == o1.id { o0 } else { o1 }, moved(o1))
-    } else {
-        Arbiter::EMPTY.points[0]
     };
-    arb.points = [p0, p1];
+    let [q0, q1] = &mut arb.points;
+    point(q0, o0, o0, first);
+    if p.count >= 2 {
+        point(q1, o1, if o0.id == o1.id { o0 } else { o1 }, moved(o1));
+    } else {
+        *q1 = Arbiter::EMPTY.points[0];
+    }
     arb.count = p.count.min(2);
     arb.normal = n;
     arb.rot_a0 = p.rot_a0;
