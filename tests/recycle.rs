@@ -34,6 +34,16 @@ fn column(n: usize, distance: Scalar) -> World<'static> {
     w
 }
 
+/// Steps `a` and `b` once each and requires them to agree: the same number
+/// of recycled manifolds and the same state hash (`what` names the step in
+/// a failure). Returns `a`'s number of recycled manifolds.
+fn step_alike(a: &mut World<'_>, b: &mut World<'_>, what: &str) -> u32 {
+    let (ra, rb) = (a.step(s(DT)).expect("step"), b.step(s(DT)).expect("step"));
+    assert_eq!(ra.manifolds_recycled, rb.manifolds_recycled, "{what}");
+    assert_eq!(a.state_hash(), b.state_hash(), "{what}");
+    ra.manifolds_recycled
+}
+
 fn top_y(w: &World<'_>) -> f64 {
     w.bodies().map(|(_, b)| b.position().y.to_num::<f64>()).fold(f64::MIN, f64::max)
 }
@@ -143,10 +153,8 @@ fn the_recycle_distance_is_checked_and_restored_with_the_snapshot() {
     w.step(s(DT)).expect("step");
     w.restore(&snap).expect("restore");
     assert_eq!(w.def().contact_recycle_distance, DEFAULT_CONTACT_RECYCLE_DISTANCE);
-    for _ in 0..30 {
-        let (a, b) = (w.step(s(DT)).expect("step"), on.step(s(DT)).expect("step"));
-        assert_eq!(a.manifolds_recycled, b.manifolds_recycled);
-        assert_eq!(w.state_hash(), on.state_hash());
+    for step in 0..30 {
+        step_alike(&mut w, &mut on, &format!("step {step}"));
     }
 }
 
@@ -168,20 +176,19 @@ fn turning_recycling_on_after_a_restore_steps_as_the_world_that_never_restored()
     for w in [&mut on, &mut restored] {
         w.set_contact_recycle_distance(DEFAULT_CONTACT_RECYCLE_DISTANCE).expect("on");
     }
-    for _ in 0..30 {
-        let (a, b) = (on.step(s(DT)).expect("step"), restored.step(s(DT)).expect("step"));
-        assert_eq!(a.manifolds_recycled, b.manifolds_recycled);
-        assert_eq!(on.state_hash(), restored.state_hash());
+    for step in 0..30 {
+        step_alike(&mut on, &mut restored, &format!("step {step}"));
     }
 }
 
 /// A 4 × 1.5 m box driven flat into a wall (e = 0.5, both points of its
 /// manifold touching at once): the step that reports the hit ends with the
-/// box on the face, and the box leaves at half the speed, square. A new manifold is computed, not recycled, so its two points take
-/// the 2×2 block: solved one at a time, the first point's impulse turns the
-/// box and the second's throws the first corner off the face, and at
-/// 2,048 m/s the box had left the wall 0.32 m before its impact step ended
-/// (so no hit was reported).
+/// box on the face, and the box leaves at half the speed, square. A new
+/// manifold is computed, not recycled, so its two points take the 2×2
+/// block: solved one at a time, the first point's impulse turns the box and
+/// the second's throws the first corner off the face, and at 2,048 m/s the
+/// box had left the wall 0.32 m before its impact step ended (so no hit was
+/// reported).
 #[test]
 fn a_flat_impact_ends_its_step_on_the_face_and_bounces_back_square() {
     for speed in [8.0, 60.0, 400.0, 2048.0] {
@@ -275,11 +282,9 @@ fn kept_lanes_step_as_rebuilt_ones_across_mass_friction_and_type_changes() {
         change(&mut w, &boxes);
         let mut restored = restored_from(&w);
         for step in 0..20 {
-            let (a, b) = (w.step(s(DT)).expect("step"), restored.step(s(DT)).expect("step"));
+            let recycled = step_alike(&mut w, &mut restored, &format!("{name}: step {step}"));
             unchanged.step(s(DT)).expect("step");
-            assert!(a.manifolds_recycled > 0, "{name}: step {step} recycled nothing");
-            assert_eq!(a.manifolds_recycled, b.manifolds_recycled, "{name}: step {step}");
-            assert_eq!(w.state_hash(), restored.state_hash(), "{name}: step {step}");
+            assert!(recycled > 0, "{name}: step {step} recycled nothing");
         }
         assert_ne!(w.state_hash(), unchanged.state_hash(), "{name}: the change changed nothing");
     }
@@ -311,10 +316,7 @@ fn a_friction_change_rebuilds_a_kept_lane() {
         snap.resize(rebuilt.snapshot_len(), 0);
         rebuilt.snapshot(&mut snap).expect("snapshot");
         rebuilt.restore(&snap).expect("restore");
-        let (a, b) = (kept.step(s(DT)).expect("step"), rebuilt.step(s(DT)).expect("step"));
-        assert_eq!(a.manifolds_recycled, b.manifolds_recycled, "step {step}");
-        recycled += a.manifolds_recycled;
-        assert_eq!(kept.state_hash(), rebuilt.state_hash(), "step {step}");
+        recycled += step_alike(&mut kept, &mut rebuilt, &format!("step {step}"));
     }
     let vx = kept.body(slider).expect("slider").linear_velocity().x.to_num::<f64>();
     assert!(vx > 0.3, "still sliding after 1 s ({vx} m/s)");

@@ -331,12 +331,6 @@ fn put(blk: &mut Block, fi: usize, l: usize, x: i64) {
     blk[(fi / ROWS) % LANES].rows[fi % ROWS][l % LANES] = x as i32;
 }
 
-/// Lane `l` of field `fi` (both taken modulo their ranges).
-#[inline(always)]
-fn get(blk: &Block, fi: usize, l: usize) -> i64 {
-    i64::from(blk[(fi / ROWS) % LANES].rows[fi % ROWS][l % LANES])
-}
-
 /// What both points of a pair share: the bodies as prepare sees them, the
 /// pair's scale, the normal and tangent (Q2.30) and the friction coefficient.
 struct Shared {
@@ -442,7 +436,7 @@ fn per_step<const BASE: usize>(
 /// The bits are those [`point`] writes.
 #[inline(always)]
 fn point_again<const BASE: usize>(c: &Shared, src: &ContactPoint, blk: &mut Block, l: usize) {
-    let arm = |x: usize| get(blk, BASE + x, l);
+    let arm = |x: usize| i64::from(super::lane(super::field(blk, BASE + x), l));
     let k = (c.pair.k(arm(f::RAN), arm(f::RBN)), c.pair.k(arm(f::RAT), arm(f::RBT)));
     per_step::<BASE>(c, src, blk, l, k);
 }
