@@ -281,9 +281,18 @@ pub(crate) enum Pass {
 struct View<'b, const W: usize> {
     blk: &'b mut Block,
     base: usize,
+    /// The kernel's mask selects every lane: its stores write whole rows.
+    full: bool,
 }
 
-impl<const W: usize> View<'_, W> {
+impl<'b, const W: usize> View<'b, W> {
+    /// Lanes `base..base + W` of `blk`, for a kernel run on lanes `m`.
+    #[inline(always)]
+    fn new(blk: &'b mut Block, base: usize, m: M<W>) -> Self {
+        // Tested once here rather than at each of a pass's stores.
+        Self { blk, base, full: m.every() }
+    }
+
     #[inline(always)]
     fn ld(&self, fi: usize) -> L<W> {
         let mut r = [0; W];
@@ -297,7 +306,7 @@ impl<const W: usize> View<'_, W> {
     /// as a masked store (see the contact kernels' `View::st`).
     #[inline(always)]
     fn st(&mut self, fi: usize, x: L<W>, m: M<W>) {
-        let x = if m.every() { x } else { self.ld(fi).select(m, x) };
+        let x = if self.full { x } else { self.ld(fi).select(m, x) };
         if let Some(row) = self.blk.get_mut(fi) {
             for (i, &x) in x.0.iter().enumerate() {
                 row[(self.base + i) % LANES] = x;
@@ -444,6 +453,29 @@ fn pose_kernel<const W: usize>(v: &mut View<'_, W>, m: M<W>, bodies: &[SolverBod
     }
 }
 
+/// The mask of lanes `lo..hi` of a block (`lo ≤ hi ≤ LANES`): the lanes
+/// below `hi` and not below `lo`, two rows of a table, where a loop over the
+/// lanes tested each in turn.
+#[inline(always)]
+fn lane_range(lo: usize, hi: usize) -> M<LANES> {
+    /// Row `n`: the lanes below `n`.
+    const BELOW: [[i32; LANES]; LANES + 1] = {
+        let mut t = [[0; LANES]; LANES + 1];
+        let mut n = 0;
+        while n <= LANES {
+            let mut l = 0;
+            while l < n {
+                t[n][l] = -1;
+                l += 1;
+            }
+            n += 1;
+        }
+        t
+    };
+    let row = |n: usize| M(BELOW.get(n).copied().unwrap_or([-1; LANES]));
+    row(hi).and(row(lo).not())
+}
+
 /// Runs `pass` on lanes `m` of view `v`.
 #[inline(always)]
 fn kernel<const W: usize>(
@@ -476,10 +508,19 @@ impl super::Solver<'_> {
     pub(crate) fn pivot_runs<const WIDE: bool>(&mut self, pass: Pass) {
         // Plain loops, no closure: a closure would be compiled apart from
         // the AVX2 function this is inlined into, without AVX2.
-        if pass == Pass::Pose {
-            self.pivot_pose::<WIDE>();
-            return;
+        // Each pass its own loop (the pass a constant in it), so that no
+        // block pays for the others' branches.
+        match pass {
+            Pass::Pose => self.pivot_pose::<WIDE>(),
+            Pass::Warm => self.pivot_colours::<WIDE>(Pass::Warm),
+            Pass::Biased => self.pivot_colours::<WIDE>(Pass::Biased),
+            Pass::Relax => self.pivot_colours::<WIDE>(Pass::Relax),
         }
+    }
+
+    /// [`pivot_runs`](Self::pivot_runs) of a pass other than the pose.
+    #[inline(always)]
+    fn pivot_colours<const WIDE: bool>(&mut self, pass: Pass) {
         let ranges = self.pivot_runs.ranges;
         let soft = self.pivot_runs.soft;
         let store: &mut [PivotLanes] = &mut self.pivots;
@@ -492,14 +533,11 @@ impl super::Solver<'_> {
                 let first = b * LANES;
                 let (lo, hi) = (start.max(first) - first, end.min(first + LANES) - first);
                 if WIDE {
-                    let mut m = [0; LANES];
-                    for (i, x) in m.iter_mut().enumerate() {
-                        *x = -i32::from(i >= lo && i < hi);
-                    }
-                    kernel::<LANES>(&mut View { blk, base: 0 }, M(m), pass, &soft, bodies);
+                    let m = lane_range(lo, hi);
+                    kernel::<LANES>(&mut View::new(blk, 0, m), m, pass, &soft, bodies);
                 } else {
                     for l in lo..hi {
-                        kernel::<1>(&mut View { blk: &mut *blk, base: l }, M::all(), pass, &soft, bodies);
+                        kernel::<1>(&mut View::new(&mut *blk, l, M::all()), M::all(), pass, &soft, bodies);
                     }
                 }
             }
@@ -516,14 +554,11 @@ impl super::Solver<'_> {
             let Some(blk) = block_mut(store, b) else { break };
             let n = (count - b * LANES).min(LANES);
             if WIDE {
-                let mut m = [0; LANES];
-                for (i, x) in m.iter_mut().enumerate() {
-                    *x = -i32::from(i < n);
-                }
-                pose_kernel::<LANES>(&mut View { blk, base: 0 }, M(m), bodies);
+                let m = lane_range(0, n);
+                pose_kernel::<LANES>(&mut View::new(blk, 0, m), m, bodies);
             } else {
                 for l in 0..n {
-                    pose_kernel::<1>(&mut View { blk: &mut *blk, base: l }, M::all(), bodies);
+                    pose_kernel::<1>(&mut View::new(&mut *blk, l, M::all()), M::all(), bodies);
                 }
             }
         }
@@ -627,12 +662,12 @@ mod tests {
             for pass in [Pass::Warm, Pass::Biased, Pass::Relax] {
                 if let Some(blk) = block_mut(&mut s1, 0) {
                     for l in (0..LANES).filter(|&l| active.is(l)) {
-                        kernel::<1>(&mut View { blk: &mut *blk, base: l }, M::all(), pass, &soft, &mut b1);
+                        kernel::<1>(&mut View::new(&mut *blk, l, M::all()), M::all(), pass, &soft, &mut b1);
                     }
                 }
                 if wide {
                     if let Some(blk) = block_mut(&mut s8, 0) {
-                        kernel::<LANES>(&mut View { blk, base: 0 }, active, pass, &soft, &mut b8);
+                        kernel::<LANES>(&mut View::new(blk, 0, active), active, pass, &soft, &mut b8);
                     }
                 }
                 for (l, j) in joints.iter_mut().enumerate().filter(|&(l, _)| active.is(l)) {
@@ -728,13 +763,13 @@ mod tests {
             let mut s1 = store;
             if let Some(blk) = block_mut(&mut s1, 0) {
                 for l in 0..LANES {
-                    pose_kernel::<1>(&mut View { blk: &mut *blk, base: l }, M::all(), &bodies);
+                    pose_kernel::<1>(&mut View::new(&mut *blk, l, M::all()), M::all(), &bodies);
                 }
             }
             if wide {
                 let mut s8 = store;
                 if let Some(blk) = block_mut(&mut s8, 0) {
-                    pose_kernel::<LANES>(&mut View { blk, base: 0 }, M::all(), &bodies);
+                    pose_kernel::<LANES>(&mut View::new(blk, 0, M::all()), M::all(), &bodies);
                 }
                 assert_eq!(s8, s1, "round {round}: eight lanes against one");
             }
