@@ -8,7 +8,7 @@ use crate::body::Body;
 use crate::error::Error;
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rot, Vector2};
-use crate::solver::{JointLanes, JointMasses, JointStep, LaneSoft, Softness, SolverBody};
+use crate::solver::{JointLanes, JointMasses, JointStep, LaneSoft, PivotStart, Softness, SolverBody};
 
 use super::def::validate_motor;
 use super::row::{ConstraintKind, ConstraintRow, JointRow, RowSolve, SpringRow};
@@ -218,6 +218,64 @@ impl Joint {
             c.lanes.prepare(&masses, sa, sb, soft, step.inv_h, self.impulse, angular);
             c.measure(sa, sb);
         }
+    }
+
+    /// Once per step, for a pivot between two bodies with neither limits nor
+    /// a motor: its row prepared for the pivot lanes when `colour` (given its
+    /// bodies' slots and whether the row moves each) gives it a colour, and
+    /// true; otherwise false with nothing written, and the caller prepares
+    /// it as any other joint ([`prepare`](Self::prepare)). The arguments are
+    /// [`prepare`](Self::prepare)'s. The lanes' pose pass then measures its
+    /// arms and position error before the first sub-step
+    /// ([`JointLanes::prepare_in_lanes`]).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn prepare_in_lanes(
+        &mut self,
+        row: &mut JointRow,
+        slot: u32,
+        (a, b): (&Body, &Body),
+        (sa, sb): (&SolverBody, &SolverBody),
+        colour: impl FnOnce([u32; 2], [bool; 2]) -> Option<u8>,
+    ) -> bool {
+        let (JointKind::Pivot { limits: None, motor: None }, Some(hb)) = (self.def.kind, self.def.body_b)
+        else {
+            return false;
+        };
+        let (ma, ia) = crate::solver::inverse_mass(a);
+        let (mb, ib) = crate::solver::inverse_mass(b);
+        let masses = JointMasses {
+            inv_mass: [ma, mb],
+            inv_inertia: [ia, ib],
+            anchors: [self.def.anchor_a, self.def.anchor_b],
+            world_point: false,
+            point: true,
+            angular: false,
+            motor: None,
+            limits: None,
+            max_impulse: None,
+            spin_damping: None,
+        };
+        let Some(start) = PivotStart::new(&masses, sa, sb) else { return false };
+        let bodies = [self.def.body_a.index(), hb.index()];
+        let Some(c) = colour(bodies, start.moves()) else { return false };
+        self.step_linear = Vector2::ZERO;
+        row.bodies = bodies;
+        row.slot = slot;
+        row.world_point = false;
+        row.pivot_colour = c;
+        if let RowSolve::Spring(_) = row.solve {
+            row.solve = RowSolve::Constraint(ConstraintRow {
+                kind: ConstraintKind::Pivot { limits: false, motor: false },
+                reference: self.reference,
+                lanes: JointLanes::INACTIVE,
+            });
+        }
+        if let RowSolve::Constraint(c) = &mut row.solve {
+            c.kind = ConstraintKind::Pivot { limits: false, motor: false };
+            c.reference = self.reference;
+            c.lanes.prepare_in_lanes(&start, sa, sb, self.impulse);
+        }
+        true
     }
 
     /// A joint whose bodies are gone this step: no row, nothing applied,

@@ -222,6 +222,79 @@ fn point_mass(
     Some([k22 * inv, -(k12 * inv), k11 * inv])
 }
 
+/// The two sides of a joint's rows for the step (ratios, inverse radius,
+/// local anchor; no pose yet) and the normalised masses ((1/m)/s, (1/I)/s)
+/// of A and B: [`JointLanes::prepare`]'s and [`PivotStart`]'s.
+#[inline(always)]
+fn sides(
+    m: &JointMasses,
+    inv_s: Scalar,
+    inv_k: Scalar,
+    anchors: [Vector2; 2],
+    a: &SolverBody,
+    b: &SolverBody,
+) -> ((Scalar, Scalar), (Scalar, Scalar), [Side; 2]) {
+    let ([ma, mb], [ia, ib]) = (m.inv_mass, m.inv_inertia);
+    // The normalised masses, once for the sides and the point mass.
+    let (na, nb) = ((ma * inv_s, ia * inv_s), (mb * inv_s, ib * inv_s));
+    (na, nb, [Side::new(anchors[0], na, ia, a, inv_k), Side::new(anchors[1], nb, ib, b, inv_k)])
+}
+
+/// M̂ = (K/s)⁻¹ in Q2.30 from the arms at the start of the step (all zero
+/// when singular): the normalised K has eigenvalues ≥ 1, so M̂'s entries
+/// are in [−1, 1].
+#[inline(always)]
+fn point_lanes(na: (Scalar, Scalar), nb: (Scalar, Scalar), side: &[Side; 2]) -> [i32; 3] {
+    let (ra, rb) = (side[0].arm(), side[1].arm());
+    point_mass(na.0, na.1, ra, nb.0, nb.1, rb).map_or([0; 3], |mm| mm.map(|x| from_scalar(x, FU, 1)))
+}
+
+/// An accumulated impulse (N·s, N·m·s) in velocity units (Q16.16), `x`
+/// being it times s or 1/I_A + 1/I_B, rounded and held to the crush limit.
+#[inline(always)]
+fn impulse_lane(x: Scalar) -> i32 {
+    from_scalar(x, FV, i64::from(LAMBDA_MAX >> FV))
+}
+
+/// The persistent linear impulse as λ̂ = λ·s (Q16.16).
+#[inline(always)]
+fn linear_lanes(impulse: Vector2, s: Scalar) -> [i32; 2] {
+    [impulse_lane(impulse.x * s), impulse_lane(impulse.y * s)]
+}
+
+/// The first half of a plain pivot's prepare (see
+/// [`JointLanes::prepare_in_lanes`]): its masses and sides, which tell the
+/// colouring whether each body moves.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PivotStart {
+    s: Scalar,
+    inv_s: Scalar,
+    /// (1/m)/s and (1/I)/s of A and B.
+    n: [(Scalar, Scalar); 2],
+    side: [Side; 2],
+}
+
+impl PivotStart {
+    /// A pivot between two bodies with neither limits nor motor, `m` its
+    /// masses and anchors (B's on body B); `None` when s = 0 (neither body
+    /// dynamic: the row would not run, and the lanes take no such pivot).
+    pub(crate) fn new(m: &JointMasses, a: &SolverBody, b: &SolverBody) -> Option<Self> {
+        let s = m.inv_mass[0] + m.inv_mass[1];
+        if s <= ZERO {
+            return None;
+        }
+        let inv_s = s.recip();
+        let (na, nb, side) = sides(m, inv_s, ZERO, m.anchors, a, b);
+        Some(Self { s, inv_s, n: [na, nb], side })
+    }
+
+    /// Whether the row can move each body (ρ or κ not zero): what the
+    /// colouring reads ([`PointRecord`]'s test).
+    pub(crate) fn moves(&self) -> [bool; 2] {
+        self.side.map(|s| s.rho | s.kappa != 0)
+    }
+}
+
 /// `v` scaled down to length `max` (≥ 0) when longer, in integers: the
 /// length is the integer square root, rounded up, of the exact 64-bit sum of
 /// squares (|v| components ≤ 2³⁰ after `narrow`, so the sum fits), and each
@@ -249,6 +322,16 @@ fn clamp_length(v: [i32; 2], max: i32) -> [i32; 2] {
 /// pivots in lanes ([`pivot_lanes`](super::pivot_lanes)) alike.
 #[inline(always)]
 pub(super) fn arm_at(anchor: [i32; 2], iota: i32, kappa: i32, q: Rot) -> [[i32; 2]; 3] {
+    let r = world_arm(anchor, q);
+    let rh = r.map(|r| narrow(wide::<{ 2 * FA - FH }>(r, iota), ARM_HAT_MAX << FH));
+    let g = rh.map(|rh| narrow(wide::<FK>(kappa, rh), G_MAX << FH));
+    [r, rh, g]
+}
+
+/// A local anchor (Q10.22) turned by `q`: the world arm r (Q10.22) of
+/// [`arm_at`].
+#[inline(always)]
+fn world_arm(anchor: [i32; 2], q: Rot) -> [i32; 2] {
     // `from_scalar(x, FU, 1)` with the clamp a cold call (`narrow`).
     let unit = |x: Scalar| {
         let bits = x.to_bits();
@@ -257,10 +340,7 @@ pub(super) fn arm_at(anchor: [i32; 2], iota: i32, kappa: i32, q: Rot) -> [[i32; 
     let (c, s) = (unit(q.c), unit(q.s));
     let [x, y] = anchor;
     // |anchor| ≤ 256 m a component, so each component stays ≤ 363 m.
-    let r = [mul::<FU>(c, x).wrapping_sub(mul::<FU>(s, y)), mul::<FU>(s, x).wrapping_add(mul::<FU>(c, y))];
-    let rh = r.map(|r| narrow(wide::<{ 2 * FA - FH }>(r, iota), ARM_HAT_MAX << FH));
-    let g = rh.map(|rh| narrow(wide::<FK>(kappa, rh), G_MAX << FH));
-    [r, rh, g]
+    [mul::<FU>(c, x).wrapping_sub(mul::<FU>(s, y)), mul::<FU>(s, x).wrapping_add(mul::<FU>(c, y))]
 }
 
 /// The position error B − A of two anchors (m, Q13.19) from the bodies'
@@ -449,20 +529,28 @@ pub(crate) struct JointLanes {
     inv_k: Scalar,
 }
 
-/// A point row's per-step values, in the formats of [`JointLanes`]: per
-/// side ρ, κ, 1/r_b, the local anchor, and the arm r̂ and ĝ = κ·r̂ at the
-/// step's first pose; M̂ (m11, m12, m22); the position error d; λ̂.
+/// A point row's per-step values that the pivot lanes take from its row, in
+/// the formats of [`JointLanes`]: per side ρ, κ, 1/r_b and the local anchor;
+/// M̂ (m11, m12, m22); λ̂. (The pose, the arms r̂ and ĝ = κ·r̂ and the
+/// position error d, the lanes measure themselves.)
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct PointRecord {
     pub(super) rho: [i32; 2],
     pub(super) kappa: [i32; 2],
     pub(super) iota: [i32; 2],
     pub(super) anchor: [[i32; 2]; 2],
+    pub(super) m: [i32; 3],
+    pub(super) lambda: [i32; 2],
+}
+
+/// A point row's pose: per side the arm r̂ and ĝ = κ·r̂, and the position
+/// error d (the pivot lanes' unit test sets them directly).
+#[cfg(test)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct PointPose {
     pub(super) rh: [[i32; 2]; 2],
     pub(super) g: [[i32; 2]; 2],
-    pub(super) m: [i32; 3],
     pub(super) d: [i32; 2],
-    pub(super) lambda: [i32; 2],
 }
 
 /// Which accumulated angular impulse a row uses.
@@ -533,9 +621,8 @@ impl JointLanes {
         let j = self;
         j.linear = s > ZERO;
         j.angular = rows;
-        // The normalised masses, once for the sides and the point mass.
-        let (na, nb) = ((ma * inv_s, ia * inv_s), (mb * inv_s, ib * inv_s));
-        j.side = [Side::new(m.anchors[0], na, ia, a, inv_k), Side::new(anchor_b, nb, ib, b, inv_k)];
+        let (na, nb, side) = sides(m, inv_s, inv_k, [m.anchors[0], anchor_b], a, b);
+        j.side = side;
         j.m = [0; 3];
         j.soft = soft;
         j.inv_h = inv_h;
@@ -561,15 +648,10 @@ impl JointLanes {
         }
         j.pose(a, b);
         if m.point && j.linear {
-            // M̂ = (K/s)⁻¹, from the arms at the start of the step: the
-            // normalised K has eigenvalues ≥ 1, so M̂'s entries are in [−1, 1].
-            let (ra, rb) = (j.side[0].arm(), j.side[1].arm());
-            if let Some(mm) = point_mass(na.0, na.1, ra, nb.0, nb.1, rb) {
-                j.m = mm.map(|x| from_scalar(x, FU, 1));
-            }
+            j.m = point_lanes(na, nb, &j.side);
         }
-        let v = |x: Scalar| from_scalar(x, FV, i64::from(LAMBDA_MAX >> FV));
-        j.lambda = [v(impulse.x * s), v(impulse.y * s)];
+        j.lambda = linear_lanes(impulse, s);
+        let v = impulse_lane;
         if let Some(d) = m.spin_damping {
             // A target joint has no limits: the field holds the damping's
             // scales (Q2.30) instead, so the row stays the size it was.
@@ -584,6 +666,40 @@ impl JointLanes {
         if rows {
             j.ang = [v(angular[0] * k), v(angular[1] * k), v(angular[2] * k)];
         }
+    }
+
+    /// A plain pivot's point row for the pivot lanes ([`pivot_lanes`](super::pivot_lanes)),
+    /// from `start` (the first half of its prepare, which the colouring
+    /// needed): what [`prepare`](Self::prepare) writes of the fields that the
+    /// lanes and the end of the step read, with the same bits, all but the
+    /// arms in body radii, ĝ and the position error, which the lanes' pose
+    /// pass measures before the first sub-step (the same bits again: the pose
+    /// pass and [`pose`](Self::pose) are held equal by `pivot_lanes`'s unit
+    /// test). The other fields keep whatever the row held: nothing reads them
+    /// for a pivot in lanes, which runs no row one at a time.
+    ///
+    /// Joint grid, 60 steps: the scalar pose and the fields no pivot in lanes
+    /// reads cost some 330 instructions a pivot a step.
+    pub(crate) fn prepare_in_lanes(
+        &mut self,
+        start: &PivotStart,
+        a: &SolverBody,
+        b: &SolverBody,
+        impulse: Vector2,
+    ) {
+        let j = self;
+        j.linear = true;
+        j.angular = false;
+        j.side = start.side;
+        let [sa, sb] = &mut j.side;
+        sa.r = world_arm(sa.anchor, a.q);
+        sb.r = world_arm(sb.anchor, b.q);
+        j.m = point_lanes(start.n[0], start.n[1], &j.side);
+        j.base = Vector2::ZERO;
+        j.lambda = linear_lanes(impulse, start.s);
+        j.sum = [0; 2];
+        j.inv_s = start.inv_s;
+        j.inv_k = ZERO;
     }
 
     /// A record with no rows to run: what prepare's fields start from.
@@ -914,10 +1030,7 @@ impl JointLanes {
             kappa: [a.kappa, b.kappa],
             iota: [a.iota, b.iota],
             anchor: [a.anchor, b.anchor],
-            rh: [a.rh, b.rh],
-            g: [a.g, b.g],
             m: self.m,
-            d: self.d,
             lambda: self.lambda,
         })
     }
@@ -925,7 +1038,7 @@ impl JointLanes {
     /// A point row built from a record and a softness (the pivot lanes'
     /// unit test's reference).
     #[cfg(test)]
-    pub(super) fn from_point_record(r: &PointRecord, soft: LaneSoft) -> Self {
+    pub(super) fn from_point_record(r: &PointRecord, p: &PointPose, soft: LaneSoft) -> Self {
         let mut j = Self::INACTIVE;
         j.linear = true;
         j.side = [0, 1].map(|s| Side {
@@ -935,10 +1048,10 @@ impl JointLanes {
             alpha: 0,
             iota: r.iota[s],
             r: [0; 2],
-            rh: r.rh[s],
-            g: r.g[s],
+            rh: p.rh[s],
+            g: p.g[s],
         });
-        (j.m, j.d, j.lambda, j.soft) = (r.m, r.d, r.lambda, soft);
+        (j.m, j.d, j.lambda, j.soft) = (r.m, p.d, r.lambda, soft);
         j
     }
 

@@ -124,7 +124,7 @@ pub(crate) use pivot_lanes::PivotRuns;
 
 pub(crate) use body::{angular_speed_limit, inverse_mass};
 use contact::LaneParams;
-pub(crate) use joint_lanes::{JointLanes, JointMasses, JointStep, LaneSoft};
+pub(crate) use joint_lanes::{JointLanes, JointMasses, JointStep, LaneSoft, PivotStart};
 use managed::ManagedSlice;
 pub(crate) use softness::Softness;
 pub(crate) use sweep::{Bias, Sweep};
@@ -193,6 +193,9 @@ pub(crate) fn solve(
     // bodies around their pass.
     let user = !constraints.is_empty();
     let vmax = ctx.max_linear_speed;
+    // The pivots in lanes' arms and position error at the start of the step
+    // (their prepare leaves them to this pass).
+    dispatch::run_pivots(solver, Pass::Pose);
     impacts(solver, &params);
     for substep in 0..n {
         let sweep = sweep_direction(substep);
@@ -388,8 +391,12 @@ fn prepare_joints(
         // The rows are as many as the joint slots, so one is always free.
         match (a, sa, rows.get_mut(count)) {
             (Some(a), Some(sa), Some(row)) => {
-                j.prepare(row, i.index(), a, b, sa, sb, &step);
-                colouring.colour(row, lanes);
+                // A plain pivot the lanes take is prepared for them alone;
+                // every other joint's row runs one at a time.
+                let take = |ids, moves| colouring.take(ids, moves, lanes);
+                if !j.prepare_in_lanes(row, i.index(), (a, b), (sa, sb), take) {
+                    j.prepare(row, i.index(), a, b, sa, sb, &step);
+                }
                 count += 1;
             }
             _ => j.deactivate(),

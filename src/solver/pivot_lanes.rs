@@ -148,27 +148,29 @@ impl Colouring {
         Self { counts: [0; COLOURS], total: 0, capacity: capacity(store) }
     }
 
-    /// Gives `row` (just prepared, in joint-slot order) its colour if it is a
-    /// plain pivot and one is free for both its bodies (a body's colours are
-    /// its lane record's field [`PIVOT_COLOURS`], cleared each step when the
-    /// body is loaded), or leaves it [`JointRow::NO_LANES`]. A body the row
-    /// cannot move (ρ = κ = 0: not dynamic) takes no colour: its lanes are
-    /// written back unchanged.
+    /// The colour of the next plain pivot in joint-slot order, between the
+    /// bodies in slots `ia`, `ib`: the lowest that neither body has taken (a
+    /// body's colours are its lane record's field [`PIVOT_COLOURS`], cleared
+    /// each step when the body is loaded), which the body then takes; or
+    /// `None` (no lanes: the row runs one at a time) when the store is full
+    /// or no colour is free. A body the row cannot move (`moves`: ρ = κ = 0,
+    /// not dynamic) takes no colour: its lanes are written back unchanged.
     #[inline]
-    pub(crate) fn colour(&mut self, row: &mut JointRow, bodies: &mut [BodyLanes]) {
-        row.pivot_colour = JointRow::NO_LANES;
+    pub(crate) fn take(
+        &mut self,
+        [ia, ib]: [u32; 2],
+        moves: [bool; 2],
+        bodies: &mut [BodyLanes],
+    ) -> Option<u8> {
         if self.total == self.capacity {
-            return;
+            return None;
         }
-        let Some(rec) = row.plain_pivot().and_then(JointLanes::point_record) else { return };
-        let [ia, ib] = row.bodies;
-        let Some((a, b)) = super::body::pair_at(bodies, ia, ib) else { return };
+        let (a, b) = super::body::pair_at(bodies, ia, ib)?;
         let (a, b) = (&mut a.0[PIVOT_COLOURS], &mut b.0[PIVOT_COLOURS]);
-        let moves = [rec.rho[0] | rec.kappa[0] != 0, rec.rho[1] | rec.kappa[1] != 0];
         let taken = |x: i32, moves: bool| if moves { x.cast_unsigned() } else { 0 };
         let free = !(taken(*a, moves[0]) | taken(*b, moves[1]));
         let c = free.trailing_zeros();
-        let Some(n) = self.counts.get_mut(c as usize) else { return };
+        let n = self.counts.get_mut(c as usize)?;
         for (x, moves) in [(a, moves[0]), (b, moves[1])] {
             if moves {
                 *x |= 1 << c;
@@ -176,10 +178,11 @@ impl Colouring {
         }
         *n += 1;
         self.total += 1;
-        row.pivot_colour = c as u8;
+        Some(c as u8)
     }
 
-    /// Writes the coloured rows' lanes in colour order; returns where each
+    /// Writes the coloured rows' lanes in colour order (all but the fields
+    /// of the pose, which the pose pass then measures); returns where each
     /// colour is.
     pub(crate) fn fill(&self, rows: &[JointRow], store: &mut [PivotLanes], softness: Softness) -> PivotRuns {
         let mut runs = PivotRuns { count: self.total, soft: LaneSoft::new(softness), ..PivotRuns::EMPTY };
@@ -204,8 +207,10 @@ impl Colouring {
     }
 }
 
-/// Writes a pivot's record into lane `lane`; `row` is its row in the dense
-/// joint array, `ia`, `ib` its bodies' slots.
+/// Writes a pivot's record into lane `lane`, all but its pose (the arms in
+/// body radii, ĝ and the position error: the pose pass measures them before
+/// the first sub-step); `row` is its row in the dense joint array, `ia`, `ib`
+/// its bodies' slots.
 pub(crate) fn put(store: &mut [PivotLanes], lane: usize, row: u32, (ia, ib): (u32, u32), r: &PointRecord) {
     let Some(blk) = block_mut(store, lane / LANES) else { return };
     let l = lane % LANES;
@@ -223,11 +228,8 @@ pub(crate) fn put(store: &mut [PivotLanes], lane: usize, row: u32, (ia, ib): (u3
         set(f::IOTA[s], r.iota[s]);
         for k in 0..2 {
             set(f::ANCHOR[s][k], r.anchor[s][k]);
-            set(f::RH[s][k], r.rh[s][k]);
-            set(f::G[s][k], r.g[s][k]);
             set(f::SUM[s][k], 0);
         }
-        set(f::D[s], r.d[s]);
         set(f::LAMBDA[s], r.lambda[s]);
     }
     set(f::M11, r.m[0]);
@@ -569,8 +571,24 @@ impl super::Solver<'_> {
 mod tests {
     use super::*;
     use crate::math::scalar::Scalar;
+    use crate::solver::joint_lanes::PointPose;
+
     use crate::math::{Rot, Vector2};
     use crate::solver::{xorshift, Bias};
+
+    /// The pose fields [`put`] leaves to the pose pass, from a record (the
+    /// kernels' unit test, which runs the passes without it).
+    fn put_pose(store: &mut [PivotLanes], lane: usize, r: &PointPose) {
+        let Some(blk) = block_mut(store, lane / LANES) else { return };
+        let l = lane % LANES;
+        for s in 0..2 {
+            for k in 0..2 {
+                blk[f::RH[s][k]][l] = r.rh[s][k];
+                blk[f::G[s][k]][l] = r.g[s][k];
+            }
+            blk[f::D[s]][l] = r.d[s];
+        }
+    }
 
     /// A value in [lo, hi]; one round in eight takes an end.
     fn range(seed: &mut u64, lo: i64, hi: i64) -> i32 {
@@ -584,7 +602,7 @@ mod tests {
 
     /// A random pivot: lane `l` joins bodies 2l and 2l + 1, or the static
     /// body 16 (ρ = 0, ĝ = 0 on that side) and 2l + 1.
-    fn record(seed: &mut u64, static_a: bool) -> PointRecord {
+    fn record(seed: &mut u64, static_a: bool) -> (PointRecord, PointPose) {
         let u = 1i64 << FU;
         let side = |seed: &mut u64, fixed: bool| {
             let arm = ARM_HAT_MAX << FH;
@@ -598,17 +616,15 @@ mod tests {
         let (rb, rhb, gb) = side(seed, false);
         let d = D_MAX << FD;
         let lam = i64::from(LAMBDA_MAX);
-        PointRecord {
+        let rec = PointRecord {
             rho: [ra, rb],
             kappa: [0; 2],
             iota: [0; 2],
             anchor: [[0; 2]; 2],
-            rh: [rha, rhb],
-            g: [ga, gb],
             m: [range(seed, 0, u), range(seed, -u, u), range(seed, 0, u)],
-            d: [range(seed, -d, d), range(seed, -d, d)],
             lambda: [range(seed, -lam, lam), range(seed, -lam, lam)],
-        }
+        };
+        (rec, PointPose { rh: [rha, rhb], g: [ga, gb], d: [range(seed, -d, d), range(seed, -d, d)] })
     }
 
     /// Each pass gives the same bits on eight lanes at once (any mask) as on
@@ -637,11 +653,12 @@ mod tests {
             };
             let mut store = [[[0; LANES]; 4]; LANES];
             let mut recs = [record(&mut seed, false); LANES];
-            for (l, rec) in recs.iter_mut().enumerate() {
+            for (l, (rec, pose)) in recs.iter_mut().enumerate() {
                 let fixed = round % 3 == 0 && l % 3 == 0;
-                *rec = record(&mut seed, fixed);
+                (*rec, *pose) = record(&mut seed, fixed);
                 let ia = if fixed { 16 } else { 2 * l as u32 };
                 put(&mut store, l, l as u32, (ia, 2 * l as u32 + 1), rec);
+                put_pose(&mut store, l, pose);
             }
             let wall = i64::from(V_WALL);
             let mut bodies = [BodyLanes::EMPTY; 17];
@@ -657,7 +674,7 @@ mod tests {
             let start = bodies;
             let (mut s1, mut b1) = (store, bodies);
             let (mut s8, mut b8) = (store, bodies);
-            let mut joints = recs.map(|r| JointLanes::from_point_record(&r, soft));
+            let mut joints = recs.map(|(r, p)| JointLanes::from_point_record(&r, &p, soft));
             let mut bref = bodies;
             for pass in [Pass::Warm, Pass::Biased, Pass::Relax] {
                 if let Some(blk) = block_mut(&mut s1, 0) {
@@ -749,13 +766,14 @@ mod tests {
             let mut store = [[[0; LANES]; 4]; LANES];
             let mut joints = [JointLanes::INACTIVE; LANES];
             for (l, j) in joints.iter_mut().enumerate() {
-                let mut rec = record(&mut seed, false);
+                let (mut rec, pose) = record(&mut seed, false);
                 let a = (511i64) << FA;
                 rec.anchor = [0, 1].map(|_| [range(&mut seed, -a, a), range(&mut seed, -a, a)]);
                 rec.iota = [range(&mut seed, 0, 1 << 30), range(&mut seed, 0, 1 << 30)];
                 rec.kappa = [range(&mut seed, 0, 1 << 30), range(&mut seed, 0, 1 << 30)];
                 put(&mut store, l, l as u32, (2 * l as u32, 2 * l as u32 + 1), &rec);
-                *j = JointLanes::from_point_record(&rec, LaneSoft::new(crate::solver::Softness::RIGID));
+                *j =
+                    JointLanes::from_point_record(&rec, &pose, LaneSoft::new(crate::solver::Softness::RIGID));
                 if let (Some(a), Some(b)) = (bodies.get(2 * l), bodies.get(2 * l + 1)) {
                     j.pose(a, b);
                 }
