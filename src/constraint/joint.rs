@@ -8,7 +8,10 @@ use crate::body::Body;
 use crate::error::Error;
 use crate::math::scalar::{Scalar, ZERO};
 use crate::math::{Rot, Vector2};
-use crate::solver::{JointLanes, JointMasses, JointStep, LaneSoft, PivotStart, Softness, SolverBody};
+use crate::solver::{
+    pivot_impulses, JointLanes, JointMasses, JointStep, LaneSoft, PivotStart, PointRecord, Softness,
+    SolverBody,
+};
 
 use super::def::validate_motor;
 use super::row::{ConstraintKind, ConstraintRow, JointRow, RowSolve, SpringRow};
@@ -221,31 +224,56 @@ impl Joint {
     }
 
     /// Once per step, for a pivot between two bodies with neither limits nor
-    /// a motor: its row prepared for the pivot lanes when `colour` (given its
-    /// bodies' slots and whether the row moves each) gives it a colour, and
-    /// true; otherwise false with nothing written, and the caller prepares
-    /// it as any other joint ([`prepare`](Self::prepare)). The arguments are
-    /// [`prepare`](Self::prepare)'s. The lanes' pose pass then measures its
-    /// arms and position error before the first sub-step
-    /// ([`JointLanes::prepare_in_lanes`]).
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn prepare_in_lanes(
+    /// a motor (a plain pivot): its colour in the pivot lanes from `colour`
+    /// (given its bodies' slots and whether the row moves each), recorded in
+    /// the header of `row` for slot `slot`, and true; otherwise false with
+    /// nothing written, and the caller prepares the joint's row
+    /// ([`prepare`](Self::prepare)). `sa`, `sb` are the solver's copies of
+    /// its bodies (`sb` none when B is gone: no lanes then); the lanes' fill
+    /// builds the rest from them (`pivot_lanes::Colouring::fill`).
+    ///
+    /// The row moves a body when ρ or κ is not zero, which is when the body's
+    /// inverse mass or inertia is: a dynamic body's mass is within
+    /// [[`MIN_MASS`](crate::geometry::mass::MIN_MASS),
+    /// [`MAX_MASS`](crate::geometry::mass::MAX_MASS)], a ratio below 2²⁷, so
+    /// ρ = (1/m)/s is at least 2⁻²⁷ and never rounds to zero, and a body
+    /// that is not dynamic has both zero. So the colour is the one a
+    /// prepared row's ρ and κ gave, without the division that prepare needs.
+    pub(crate) fn take_lanes(
         &mut self,
         row: &mut JointRow,
         slot: u32,
-        (a, b): (&Body, &Body),
-        (sa, sb): (&SolverBody, &SolverBody),
+        (sa, sb): (&SolverBody, Option<&SolverBody>),
         colour: impl FnOnce([u32; 2], [bool; 2]) -> Option<u8>,
     ) -> bool {
-        let (JointKind::Pivot { limits: None, motor: None }, Some(hb)) = (self.def.kind, self.def.body_b)
+        let (JointKind::Pivot { limits: None, motor: None }, Some(hb), Some(sb)) =
+            (self.def.kind, self.def.body_b, sb)
         else {
             return false;
         };
-        let (ma, ia) = crate::solver::inverse_mass(a);
-        let (mb, ib) = crate::solver::inverse_mass(b);
+        // s = 0: neither body dynamic, no row runs (and no lanes).
+        if sa.inv_mass + sb.inv_mass <= ZERO {
+            return false;
+        }
+        let moves = [sa, sb].map(|b| b.inv_mass != ZERO || b.inv_inertia != ZERO);
+        let bodies = [self.def.body_a.index(), hb.index()];
+        let Some(c) = colour(bodies, moves) else { return false };
+        self.step_linear = Vector2::ZERO;
+        row.bodies = bodies;
+        row.slot = slot;
+        row.world_point = false;
+        row.pivot_colour = c;
+        true
+    }
+
+    /// A plain pivot's record for the pivot lanes and its 1/s (see
+    /// [`take_lanes`](Self::take_lanes)): what [`prepare`](Self::prepare)
+    /// would give its row, the same bits. `None` if the joint is not one.
+    #[inline(always)]
+    pub(crate) fn pivot_record(&self, sa: &SolverBody, sb: &SolverBody) -> Option<(PointRecord, Scalar)> {
         let masses = JointMasses {
-            inv_mass: [ma, mb],
-            inv_inertia: [ia, ib],
+            inv_mass: [sa.inv_mass, sb.inv_mass],
+            inv_inertia: [sa.inv_inertia, sb.inv_inertia],
             anchors: [self.def.anchor_a, self.def.anchor_b],
             world_point: false,
             point: true,
@@ -255,27 +283,8 @@ impl Joint {
             max_impulse: None,
             spin_damping: None,
         };
-        let Some(start) = PivotStart::new(&masses, sa, sb) else { return false };
-        let bodies = [self.def.body_a.index(), hb.index()];
-        let Some(c) = colour(bodies, start.moves()) else { return false };
-        self.step_linear = Vector2::ZERO;
-        row.bodies = bodies;
-        row.slot = slot;
-        row.world_point = false;
-        row.pivot_colour = c;
-        if let RowSolve::Spring(_) = row.solve {
-            row.solve = RowSolve::Constraint(ConstraintRow {
-                kind: ConstraintKind::Pivot { limits: false, motor: false },
-                reference: self.reference,
-                lanes: JointLanes::INACTIVE,
-            });
-        }
-        if let RowSolve::Constraint(c) = &mut row.solve {
-            c.kind = ConstraintKind::Pivot { limits: false, motor: false };
-            c.reference = self.reference;
-            c.lanes.prepare_in_lanes(&start, sa, sb, self.impulse);
-        }
-        true
+        let start = PivotStart::new(&masses, sa, sb)?;
+        Some((start.record(sa, sb, self.impulse), start.inv_s()))
     }
 
     /// A joint whose bodies are gone this step: no row, nothing applied,
@@ -311,6 +320,21 @@ impl Joint {
                 self.step_linear += c.lanes.step_linear();
             }
         }
+        self.breaks()
+    }
+
+    /// After the sub-steps, for a pivot in lanes: its accumulated λ̂ and the
+    /// λ̂ it applied (see [`finish_step`](Self::finish_step)), with its 1/s;
+    /// true when it breaks.
+    pub(crate) fn finish_pivot(&mut self, lambda: [i32; 2], sum: [i64; 2], inv_s: Scalar) -> bool {
+        let (impulse, step) = pivot_impulses(lambda, sum, inv_s);
+        self.impulse = impulse;
+        self.step_linear += step;
+        self.breaks()
+    }
+
+    /// Whether the step's linear impulse breaks the joint.
+    fn breaks(&self) -> bool {
         // The magnitude costs a square root: only joints that can break need it.
         self.def.break_impulse.is_some_and(|limit| self.step_linear.length() > limit)
     }

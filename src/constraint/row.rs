@@ -18,17 +18,30 @@ use super::rod::Distance;
 use super::{pivot, rod, spring, target, weld};
 
 /// A built-in joint's row for one step.
+///
+/// A plain pivot the pivot lanes take uses only the header (the fields before
+/// [`solve`](Self::solve), first in memory, in one cache line): its bodies,
+/// slot, colour, lane and 1/s; the lanes hold the rest, and `solve` keeps
+/// whatever it held. Joint grid (19,800 pivots): writing and reading back the
+/// whole 320-byte row for each pivot cost some 6 MB of memory traffic a step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
 pub struct JointRow {
     /// Body slots of A and B (B's is unused for a joint to a world point).
     pub(crate) bodies: [u32; 2],
     /// The joint's slot: where the end of the step writes the impulses back.
     pub(crate) slot: u32,
+    /// A pivot in lanes: its lane this step.
+    pub(crate) lane: u32,
+    /// A pivot in lanes: 1/s (1/(1/m_A + 1/m_B)), which turns its λ̂ back
+    /// into N·s at the end of the step.
+    pub(crate) inv_s: Scalar,
     /// B is a fixed world point: the passes give the joint a static stand-in.
     pub(crate) world_point: bool,
     /// The colour it takes in the pivot lanes this step, or
     /// [`NO_LANES`](Self::NO_LANES) when it is solved one at a time.
     pub(crate) pivot_colour: u8,
+    /// The row solved one at a time (unused for a pivot in lanes).
     pub(crate) solve: RowSolve,
 }
 
@@ -40,6 +53,8 @@ impl JointRow {
     pub const EMPTY: Self = Self {
         bodies: [0; 2],
         slot: 0,
+        lane: 0,
+        inv_s: ZERO,
         world_point: false,
         pivot_colour: Self::NO_LANES,
         solve: RowSolve::Spring(SpringRow::EMPTY),
@@ -161,27 +176,6 @@ impl ConstraintRow {
 }
 
 impl JointRow {
-    /// A plain pivot's point row (no limits, no motor, between two bodies),
-    /// which the pivot lanes can solve.
-    pub(crate) fn plain_pivot(&self) -> Option<&JointLanes> {
-        match &self.solve {
-            RowSolve::Constraint(c)
-                if !self.world_point && c.kind == (ConstraintKind::Pivot { limits: false, motor: false }) =>
-            {
-                Some(&c.lanes)
-            }
-            _ => None,
-        }
-    }
-
-    /// The row's lane state, for the pivot lanes' write-back.
-    pub(crate) fn lanes_mut(&mut self) -> Option<&mut JointLanes> {
-        match &mut self.solve {
-            RowSolve::Constraint(c) => Some(&mut c.lanes),
-            RowSolve::Spring(_) => None,
-        }
-    }
-
     /// Applies the impulses it ended the last sub-step with (springs have
     /// none).
     pub(crate) fn warm_start(&mut self, la: &mut BodyLanes, lb: &mut BodyLanes) {

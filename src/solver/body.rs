@@ -93,6 +93,10 @@ pub struct SolverBody {
     /// (large scene, 20 steps: 2,523.3 → 2,508.4 M instructions).
     pub(crate) inv_mass: Scalar,
     pub(crate) rim_inv_mass: Scalar,
+    /// The inverse inertia a contact or a joint sees ([`inverse_mass`]), for
+    /// the plain pivots' prepare (`pivot_lanes::Colouring::fill`), which
+    /// then reads no `Body`.
+    pub(crate) inv_inertia: Scalar,
     /// This sub-step's share of the force generators' velocity change.
     pub(crate) force_dv: Vector2,
     pub(crate) force_dw: Scalar,
@@ -141,6 +145,7 @@ impl SolverBody {
         inv_radius: Scalar::ONE,
         inv_mass: ZERO,
         rim_inv_mass: ZERO,
+        inv_inertia: ZERO,
         force_dv: Vector2::ZERO,
         force_dw: ZERO,
         w_max: ZERO,
@@ -197,6 +202,7 @@ impl SolverBody {
             inv_mass,
             // (I⁻¹·r_b)·r_b: r_b² of a small body would keep few bits.
             rim_inv_mass: inv_inertia * radius * radius,
+            inv_inertia,
             force_dv: Vector2::ZERO,
             force_dw: ZERO,
             // `angular_speed_limit`, reusing the reciprocal of the radius.

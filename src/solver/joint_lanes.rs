@@ -262,9 +262,8 @@ fn linear_lanes(impulse: Vector2, s: Scalar) -> [i32; 2] {
     [impulse_lane(impulse.x * s), impulse_lane(impulse.y * s)]
 }
 
-/// The first half of a plain pivot's prepare (see
-/// [`JointLanes::prepare_in_lanes`]): its masses and sides, which tell the
-/// colouring whether each body moves.
+/// A plain pivot's masses and sides for the step, from which the pivot
+/// lanes' fill builds its [`PointRecord`] ([`PivotStart::record`]).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PivotStart {
     s: Scalar,
@@ -278,6 +277,7 @@ impl PivotStart {
     /// A pivot between two bodies with neither limits nor motor, `m` its
     /// masses and anchors (B's on body B); `None` when s = 0 (neither body
     /// dynamic: the row would not run, and the lanes take no such pivot).
+    #[inline(always)]
     pub(crate) fn new(m: &JointMasses, a: &SolverBody, b: &SolverBody) -> Option<Self> {
         let s = m.inv_mass[0] + m.inv_mass[1];
         if s <= ZERO {
@@ -288,11 +288,50 @@ impl PivotStart {
         Some(Self { s, inv_s, n: [na, nb], side })
     }
 
-    /// Whether the row can move each body (ρ or κ not zero): what the
-    /// colouring reads ([`PointRecord`]'s test).
-    pub(crate) fn moves(&self) -> [bool; 2] {
-        self.side.map(|s| s.rho | s.kappa != 0)
+    /// What [`JointLanes::prepare`] gives the point row of this pivot, in
+    /// the lanes' record: the same products and roundings, so the same bits.
+    /// `a`, `b` are the bodies as the step loaded them (their rotations turn
+    /// the anchors for M̂) and `impulse` the persistent λ (N·s).
+    #[inline(always)]
+    pub(crate) fn record(&self, a: &SolverBody, b: &SolverBody, impulse: Vector2) -> PointRecord {
+        let mut side = self.side;
+        let [sa, sb] = &mut side;
+        sa.r = world_arm(sa.anchor, a.q);
+        sb.r = world_arm(sb.anchor, b.q);
+        PointRecord {
+            rho: [sa.rho, sb.rho],
+            kappa: [sa.kappa, sb.kappa],
+            iota: [sa.iota, sb.iota],
+            anchor: [sa.anchor, sb.anchor],
+            m: point_lanes(self.n[0], self.n[1], &side),
+            lambda: linear_lanes(impulse, self.s),
+        }
     }
+
+    /// 1/s: what turns λ̂ back into N·s at the end of the step
+    /// ([`linear_impulse`]).
+    pub(crate) fn inv_s(&self) -> Scalar {
+        self.inv_s
+    }
+}
+
+/// An accumulated λ̂ (Q16.16) in N·s, from 1/s.
+#[inline]
+fn linear_impulse(lambda: [i32; 2], inv_s: Scalar) -> Vector2 {
+    Vector2::new(to_scalar(lambda[0], FV) * inv_s, to_scalar(lambda[1], FV) * inv_s)
+}
+
+/// The λ̂ applied over a step (a 64-bit sum of Q16.16) in N·s, from 1/s.
+#[inline]
+fn step_linear(sum: [i64; 2], inv_s: Scalar) -> Vector2 {
+    Vector2::new(lanes::wide_to_scalar(sum[0]) * inv_s, lanes::wide_to_scalar(sum[1]) * inv_s)
+}
+
+/// A pivot in lanes' accumulated λ̂ and the λ̂ it applied over the step
+/// (see `pivot_lanes::point_state`) in N·s, from its 1/s: what
+/// [`JointLanes::linear_impulse`] and [`JointLanes::step_linear`] give a row.
+pub(crate) fn pivot_impulses(lambda: [i32; 2], sum: [i64; 2], inv_s: Scalar) -> (Vector2, Vector2) {
+    (linear_impulse(lambda, inv_s), step_linear(sum, inv_s))
 }
 
 /// `v` scaled down to length `max` (≥ 0) when longer, in integers: the
@@ -534,13 +573,19 @@ pub(crate) struct JointLanes {
 /// M̂ (m11, m12, m22); λ̂. (The pose, the arms r̂ and ĝ = κ·r̂ and the
 /// position error d, the lanes measure themselves.)
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) struct PointRecord {
+pub(crate) struct PointRecord {
     pub(super) rho: [i32; 2],
     pub(super) kappa: [i32; 2],
     pub(super) iota: [i32; 2],
     pub(super) anchor: [[i32; 2]; 2],
     pub(super) m: [i32; 3],
     pub(super) lambda: [i32; 2],
+}
+
+impl PointRecord {
+    /// A pivot that moves nothing (no mass ratios, M̂ = 0, no impulse).
+    pub(crate) const INERT: Self =
+        Self { rho: [0; 2], kappa: [0; 2], iota: [0; 2], anchor: [[0; 2]; 2], m: [0; 3], lambda: [0; 2] };
 }
 
 /// A point row's pose: per side the arm r̂ and ĝ = κ·r̂, and the position
@@ -666,42 +711,6 @@ impl JointLanes {
         if rows {
             j.ang = [v(angular[0] * k), v(angular[1] * k), v(angular[2] * k)];
         }
-    }
-
-    /// A plain pivot's point row for the pivot lanes ([`pivot_lanes`](super::pivot_lanes)),
-    /// from `start` (the first half of its prepare, which the colouring
-    /// needed): what [`prepare`](Self::prepare) writes of the fields that the
-    /// lanes and the end of the step read, with the same bits, all but the
-    /// arms in body radii, ĝ and the position error, which the lanes' pose
-    /// pass measures before the first sub-step (the same bits again: the pose
-    /// pass and [`pose`](Self::pose) are held equal by `pivot_lanes`'s unit
-    /// test). The other fields keep whatever the row held: nothing reads them
-    /// for a pivot in lanes, which runs no row one at a time.
-    ///
-    /// Skipping the generic prepare's branches, the scalar pose and the
-    /// fields no pivot in lanes reads: joint grid, 60 steps, 5,249.7 →
-    /// 5,008.5 M instructions with the pose pass added (about 200 fewer a
-    /// pivot a step), the same bits.
-    pub(crate) fn prepare_in_lanes(
-        &mut self,
-        start: &PivotStart,
-        a: &SolverBody,
-        b: &SolverBody,
-        impulse: Vector2,
-    ) {
-        let j = self;
-        j.linear = true;
-        j.angular = false;
-        j.side = start.side;
-        let [sa, sb] = &mut j.side;
-        sa.r = world_arm(sa.anchor, a.q);
-        sb.r = world_arm(sb.anchor, b.q);
-        j.m = point_lanes(start.n[0], start.n[1], &j.side);
-        j.base = Vector2::ZERO;
-        j.lambda = linear_lanes(impulse, start.s);
-        j.sum = [0; 2];
-        j.inv_s = start.inv_s;
-        j.inv_k = ZERO;
     }
 
     /// A record with no rows to run: what prepare's fields start from.
@@ -1019,24 +1028,6 @@ impl JointLanes {
         new.wrapping_sub(old)
     }
 
-    /// A pivot's point row as the pivots in lanes take it
-    /// ([`pivot_lanes`](super::pivot_lanes)), or `None` unless the point row
-    /// is all that runs (no angular rows) and it runs, between two bodies.
-    pub(super) fn point_record(&self) -> Option<PointRecord> {
-        if !self.linear || self.angular || self.base != Vector2::ZERO {
-            return None;
-        }
-        let [a, b] = &self.side;
-        Some(PointRecord {
-            rho: [a.rho, b.rho],
-            kappa: [a.kappa, b.kappa],
-            iota: [a.iota, b.iota],
-            anchor: [a.anchor, b.anchor],
-            m: self.m,
-            lambda: self.lambda,
-        })
-    }
-
     /// A point row built from a record and a softness (the pivot lanes'
     /// unit test's reference).
     #[cfg(test)]
@@ -1070,13 +1061,6 @@ impl JointLanes {
         (self.lambda, self.sum)
     }
 
-    /// Takes back what the pivots in lanes did to the point row over the
-    /// step: the accumulated λ̂ and the λ̂ applied, summed.
-    pub(super) fn set_point(&mut self, lambda: [i32; 2], sum: [i64; 2]) {
-        self.lambda = lambda;
-        self.sum = sum;
-    }
-
     /// Whether the linear rows ran this step (the persistent impulses are
     /// then replaced by [`linear_impulse`](Self::linear_impulse)).
     pub(crate) fn active(&self) -> (bool, bool) {
@@ -1085,8 +1069,7 @@ impl JointLanes {
 
     /// The accumulated linear impulse in N·s.
     pub(crate) fn linear_impulse(&self) -> Vector2 {
-        let s = self.inv_s;
-        Vector2::new(to_scalar(self.lambda[0], FV) * s, to_scalar(self.lambda[1], FV) * s)
+        linear_impulse(self.lambda, self.inv_s)
     }
 
     /// The accumulated angular impulses in N·m·s: [angular, motor, limit].
@@ -1096,10 +1079,7 @@ impl JointLanes {
 
     /// The linear impulse applied over the step (N·s).
     pub(crate) fn step_linear(&self) -> Vector2 {
-        Vector2::new(
-            lanes::wide_to_scalar(self.sum[0]) * self.inv_s,
-            lanes::wide_to_scalar(self.sum[1]) * self.inv_s,
-        )
+        step_linear(self.sum, self.inv_s)
     }
 }
 

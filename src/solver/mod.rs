@@ -124,7 +124,9 @@ pub(crate) use pivot_lanes::PivotRuns;
 
 pub(crate) use body::{angular_speed_limit, inverse_mass};
 use contact::LaneParams;
-pub(crate) use joint_lanes::{JointLanes, JointMasses, JointStep, LaneSoft, PivotStart};
+pub(crate) use joint_lanes::{
+    pivot_impulses, JointLanes, JointMasses, JointStep, LaneSoft, PivotStart, PointRecord,
+};
 use managed::ManagedSlice;
 pub(crate) use softness::Softness;
 pub(crate) use sweep::{Bias, Sweep};
@@ -242,7 +244,6 @@ pub(crate) fn solve(
     dispatch::run(solver, Sweep::Forward, &contact::Restitute { params: &params });
     solver.store_contacts(arbiters.live_mut());
     store_bodies(solver, bodies);
-    finish_pivots(solver);
     store_joints(solver, joints);
     for (_, b) in bodies.iter_mut() {
         b.force_dv = Vector2::ZERO;
@@ -383,18 +384,19 @@ fn prepare_joints(
     let step = JointStep::new(ctx.joint_softness, ctx.h, ctx.inv_h);
     let mut count = 0;
     for (i, j) in joints.iter_mut() {
-        let b = j.def.body_b.and_then(|hb| bodies.get(hb)).unwrap_or(&ground);
-        let sb = j.def.body_b.filter(|&hb| bodies.get(hb).is_some());
-        let sb = sb.and_then(|hb| sbodies.get(hb.index() as usize)).unwrap_or(&sground);
+        // B, if the joint has one and it is there (else a static stand-in).
+        let live_b = j.def.body_b.and_then(|hb| Some((bodies.get(hb)?, sbodies.get(hb.index() as usize)?)));
+        let (b, sb) = live_b.unwrap_or((&ground, &sground));
         let a = bodies.get(j.def.body_a);
         let sa = sbodies.get(j.def.body_a.index() as usize);
         // The rows are as many as the joint slots, so one is always free.
         match (a, sa, rows.get_mut(count)) {
             (Some(a), Some(sa), Some(row)) => {
-                // A plain pivot the lanes take is prepared for them alone;
-                // every other joint's row runs one at a time.
+                // A plain pivot the lanes take is coloured here and built
+                // straight into its lane by the fill below; every other
+                // joint's row runs one at a time.
                 let take = |ids, moves| colouring.take(ids, moves, lanes);
-                if !j.prepare_in_lanes(row, i.index(), (a, b), (sa, sb), take) {
+                if !j.take_lanes(row, i.index(), (sa, live_b.map(|(_, sb)| sb)), take) {
                     j.prepare(row, i.index(), a, b, sa, sb, &step);
                 }
                 count += 1;
@@ -403,9 +405,9 @@ fn prepare_joints(
         }
     }
     solver.joint_count = count;
-    let rows: &[JointRow] = &solver.joints;
-    let rows = rows.get(..count).unwrap_or_default();
-    solver.pivot_runs = colouring.fill(rows, &mut solver.pivots, ctx.joint_softness);
+    let rows: &mut [JointRow] = &mut solver.joints;
+    let rows = rows.get_mut(..count).unwrap_or_default();
+    solver.pivot_runs = colouring.fill(rows, joints, &solver.bodies, &mut solver.pivots, ctx.joint_softness);
     // A dormant game constraint (a body of it removed) is skipped.
     for (_, c) in constraints.iter_mut() {
         let b = match c.body_b {
@@ -418,20 +420,19 @@ fn prepare_joints(
     }
 }
 
-/// After the sub-steps: the pivot lanes' impulses back into their rows.
-fn finish_pivots(solver: &mut Solver<'_>) {
-    let rows: &mut [JointRow] = &mut solver.joints;
-    let count = solver.pivot_runs.count;
-    pivot_lanes::finish(&mut solver.pivots, count, rows);
-}
-
-/// After the sub-steps: each row's impulses back into its joint, and whether
-/// the joint broke.
+/// After the sub-steps: each row's impulses (a pivot in lanes: its lane's)
+/// back into its joint, and whether the joint broke.
 fn store_joints(solver: &Solver<'_>, joints: &mut Arena<'_, Joint, JointMarker>) {
     let rows: &[JointRow] = &solver.joints;
+    let store: &[PivotLanes] = &solver.pivots;
     for row in rows.get(..solver.joint_count).unwrap_or_default() {
         if let Some(j) = joints.get_at_mut(row.slot) {
-            j.broken = j.finish_step(row);
+            j.broken = if row.pivot_colour == JointRow::NO_LANES {
+                j.finish_step(row)
+            } else {
+                let (lambda, sum) = pivot_lanes::point_state(store, row.lane as usize);
+                j.finish_pivot(lambda, sum, row.inv_s)
+            };
         }
     }
 }

@@ -48,11 +48,13 @@
 //! anchor by its body's rotation and measures the position error, as
 //! [`JointLanes::pose`] does, one lane at a time.
 
-use crate::constraint::JointRow;
+use crate::arena::Arena;
+use crate::constraint::{Joint, JointMarker, JointRow};
+use crate::math::scalar::Scalar;
 
 use super::body::{BodyLanes, SolverBody, PIVOT_COLOURS};
 use super::joint_lanes::{
-    JointLanes, LaneSoft, PointRecord, ARM_HAT_MAX, BIAS_MAX, D_MAX, FA, FD, FH, FK, G_MAX, RATE_MAX,
+    LaneSoft, PointRecord, ARM_HAT_MAX, BIAS_MAX, D_MAX, FA, FD, FH, FK, G_MAX, RATE_MAX,
 };
 use super::lanes::{FQ, FU, FV, L, L64, LAMBDA_MAX, LANES, M, V_WALL};
 use super::Softness;
@@ -71,8 +73,8 @@ mod f {
     /// Body slots of A and B.
     pub(super) const IA: usize = 0;
     pub(super) const IB: usize = 1;
-    /// The joint's row in the solver's dense joint array.
-    pub(super) const ROW: usize = 2;
+    // Field 2 is spare (it held the row's index, which the end of the
+    // step now takes from the row: see `Solver::store_joints`).
     /// ρ of A and B (Q2.30).
     pub(super) const RHO: [usize; 2] = [3, 4];
     /// κ of A and B (Q5.27).
@@ -181,10 +183,19 @@ impl Colouring {
         Some(c as u8)
     }
 
-    /// Writes the coloured rows' lanes in colour order (all but the fields
-    /// of the pose, which the pose pass then measures); returns where each
-    /// colour is.
-    pub(crate) fn fill(&self, rows: &[JointRow], store: &mut [PivotLanes], softness: Softness) -> PivotRuns {
+    /// Writes the coloured pivots' lanes in colour order (all but the fields
+    /// of the pose, which the pose pass then measures), each built from its
+    /// joint and the solver's copies of its bodies
+    /// ([`Joint::pivot_record`]), and records each one's lane and 1/s in its
+    /// row's header; returns where each colour is.
+    pub(crate) fn fill(
+        &self,
+        rows: &mut [JointRow],
+        joints: &Arena<'_, Joint, JointMarker>,
+        bodies: &[SolverBody],
+        store: &mut [PivotLanes],
+        softness: Softness,
+    ) -> PivotRuns {
         let mut runs = PivotRuns { count: self.total, soft: LaneSoft::new(softness), ..PivotRuns::EMPTY };
         let mut next = [0u32; COLOURS];
         let mut start = 0;
@@ -193,15 +204,22 @@ impl Colouring {
             *next = start;
             start += n;
         }
-        for (i, row) in rows.iter().enumerate() {
+        for row in rows.iter_mut() {
             let Some(next) = next.get_mut(usize::from(row.pivot_colour)) else {
                 runs.one_at_a_time += 1;
                 continue;
             };
-            if let Some(rec) = row.plain_pivot().and_then(JointLanes::point_record) {
-                put(store, *next as usize, i as u32, (row.bodies[0], row.bodies[1]), &rec);
-                *next += 1;
-            }
+            let [ia, ib] = row.bodies;
+            let side = |k: u32| bodies.get(k as usize).unwrap_or(&SolverBody::EMPTY);
+            let built = joints.get_at(row.slot).and_then(|j| j.pivot_record(side(ia), side(ib)));
+            // Every coloured row is a live plain pivot with s > 0 (see
+            // `Joint::take_lanes`), so `built` is there; were it not, the
+            // lane would hold a pivot that moves nothing.
+            let (rec, inv_s) = built.unwrap_or((PointRecord::INERT, Scalar::ZERO));
+            put(store, *next as usize, (ia, ib), &rec);
+            row.lane = *next;
+            row.inv_s = inv_s;
+            *next += 1;
         }
         runs
     }
@@ -209,9 +227,8 @@ impl Colouring {
 
 /// Writes a pivot's record into lane `lane`, all but its pose (the arms in
 /// body radii, ĝ and the position error: the pose pass measures them before
-/// the first sub-step); `row` is its row in the dense joint array, `ia`, `ib`
-/// its bodies' slots.
-pub(crate) fn put(store: &mut [PivotLanes], lane: usize, row: u32, (ia, ib): (u32, u32), r: &PointRecord) {
+/// the first sub-step); `ia`, `ib` are its bodies' slots.
+pub(crate) fn put(store: &mut [PivotLanes], lane: usize, (ia, ib): (u32, u32), r: &PointRecord) {
     let Some(blk) = block_mut(store, lane / LANES) else { return };
     let l = lane % LANES;
     let mut set = |fi: usize, x: i32| {
@@ -221,7 +238,6 @@ pub(crate) fn put(store: &mut [PivotLanes], lane: usize, row: u32, (ia, ib): (u3
     };
     set(f::IA, ia as i32);
     set(f::IB, ib as i32);
-    set(f::ROW, row as i32);
     for s in 0..2 {
         set(f::RHO[s], r.rho[s]);
         set(f::KAPPA[s], r.kappa[s]);
@@ -243,19 +259,15 @@ fn get(blk: &Block, fi: usize, l: usize) -> i32 {
     blk.get(fi).and_then(|x| x.get(l)).copied().unwrap_or(0)
 }
 
-/// At the end of the step: each pivot's λ̂ and the λ̂ it applied, back into
-/// its row of `rows`.
-pub(crate) fn finish(store: &mut [PivotLanes], count: usize, rows: &mut [JointRow]) {
-    for b in 0..count.div_ceil(LANES) {
-        let Some(blk) = block_mut(store, b) else { return };
-        for l in 0..(count - b * LANES).min(LANES) {
-            let sum = |s: usize| join(get(blk, f::SUM[s][0], l), get(blk, f::SUM[s][1], l));
-            let row = rows.get_mut(get(blk, f::ROW, l) as u32 as usize);
-            if let Some(j) = row.and_then(JointRow::lanes_mut) {
-                j.set_point([get(blk, f::LAMBDA[0], l), get(blk, f::LAMBDA[1], l)], [sum(0), sum(1)]);
-            }
-        }
-    }
+/// At the end of the step: the accumulated λ̂ of the pivot in lane `lane`
+/// and the λ̂ it applied over the step, summed (zeros outside the store).
+pub(crate) fn point_state(store: &[PivotLanes], lane: usize) -> ([i32; 2], [i64; 2]) {
+    let first = lane / LANES * LANES;
+    let records = store.get(first..first + LANES).unwrap_or_default();
+    let Ok(blk) = <&Block>::try_from(records.as_flattened()) else { return ([0; 2], [0; 2]) };
+    let l = lane % LANES;
+    let sum = |s: usize| join(get(blk, f::SUM[s][0], l), get(blk, f::SUM[s][1], l));
+    ([get(blk, f::LAMBDA[0], l), get(blk, f::LAMBDA[1], l)], [sum(0), sum(1)])
 }
 
 /// An `i64` from its low and high words.
@@ -571,7 +583,7 @@ impl super::Solver<'_> {
 mod tests {
     use super::*;
     use crate::math::scalar::Scalar;
-    use crate::solver::joint_lanes::PointPose;
+    use crate::solver::joint_lanes::{JointLanes, PointPose};
 
     use crate::math::{Rot, Vector2};
     use crate::solver::{xorshift, Bias};
@@ -657,7 +669,7 @@ mod tests {
                 let fixed = round % 3 == 0 && l % 3 == 0;
                 (*rec, *pose) = record(&mut seed, fixed);
                 let ia = if fixed { 16 } else { 2 * l as u32 };
-                put(&mut store, l, l as u32, (ia, 2 * l as u32 + 1), rec);
+                put(&mut store, l, (ia, 2 * l as u32 + 1), rec);
                 put_pose(&mut store, l, pose);
             }
             let wall = i64::from(V_WALL);
@@ -771,7 +783,7 @@ mod tests {
                 rec.anchor = [0, 1].map(|_| [range(&mut seed, -a, a), range(&mut seed, -a, a)]);
                 rec.iota = [range(&mut seed, 0, 1 << 30), range(&mut seed, 0, 1 << 30)];
                 rec.kappa = [range(&mut seed, 0, 1 << 30), range(&mut seed, 0, 1 << 30)];
-                put(&mut store, l, l as u32, (2 * l as u32, 2 * l as u32 + 1), &rec);
+                put(&mut store, l, (2 * l as u32, 2 * l as u32 + 1), &rec);
                 *j =
                     JointLanes::from_point_record(&rec, &pose, LaneSoft::new(crate::solver::Softness::RIGID));
                 if let (Some(a), Some(b)) = (bodies.get(2 * l), bodies.get(2 * l + 1)) {
