@@ -1087,6 +1087,45 @@ impl JointLanes {
 mod tests {
     use super::clamp_length;
 
+    /// `Joint::take_lanes` colours a plain pivot as its prepared row's ρ and
+    /// κ would: a body moves exactly when its inverse mass or inertia is not
+    /// zero. Within the mass limits even the heaviest body pinned to the
+    /// lightest keeps a ρ above zero.
+    #[test]
+    fn a_dynamic_body_keeps_a_mass_ratio_above_zero_at_the_mass_limits() {
+        use super::{JointMasses, PivotStart, SolverBody};
+        use crate::geometry::mass::{MAX_MASS, MIN_MASS};
+        use crate::math::scalar::{Scalar, ZERO};
+        use crate::math::Vector2;
+        let (heavy, light) = (MAX_MASS.recip(), MIN_MASS.recip());
+        for (inv_mass, moves) in [
+            ([heavy, light], [true, true]),
+            ([light, heavy], [true, true]),
+            ([heavy, ZERO], [true, false]),
+            ([ZERO, heavy], [false, true]),
+        ] {
+            let inv_inertia = inv_mass.map(|m| if m == ZERO { ZERO } else { Scalar::ONE });
+            let m = JointMasses {
+                inv_mass,
+                inv_inertia,
+                anchors: [Vector2::ZERO; 2],
+                world_point: false,
+                point: true,
+                angular: false,
+                motor: None,
+                limits: None,
+                max_impulse: None,
+                spin_damping: None,
+            };
+            let b = SolverBody::EMPTY;
+            let start = PivotStart::new(&m, &b, &b).expect("s > 0");
+            let rho = start.side.map(|s| s.rho);
+            assert_eq!(rho.map(|r| r > 0), moves, "{inv_mass:?}: ρ {rho:?}");
+            // ρ ≥ 2⁻²⁷ in Q2.30: at least eight units.
+            assert!(rho.iter().all(|&r| r == 0 || r >= 8), "{rho:?}");
+        }
+    }
+
     /// The definition: scaled by max/⌈|v|⌉ (towards zero) when ⌈|v|⌉ > max.
     fn by_definition(v: [i32; 2], max: i32) -> [i32; 2] {
         let [x, y] = v.map(i64::from);
