@@ -4,11 +4,13 @@
 //! A pivot between two bodies whose only row is its point constraint (Box2D's
 //! revolute joint with neither limit nor motor: chains, ragdoll-free grids,
 //! bridges) is the commonest joint, and its row is a 2×2 block like a
-//! two-point contact's. Each step, after the joints' rows are prepared, these
-//! pivots are coloured in joint-slot order as the contacts are (each takes
-//! the lowest of 32 colours that neither of its dynamic bodies has taken; a
+//! two-point contact's. Each step, as the joints are prepared, these pivots
+//! are coloured in joint-slot order as the contacts are (each takes the
+//! lowest of 32 colours that neither of its dynamic bodies has taken; a
 //! static, kinematic or frozen body takes no colour, since the row never
-//! changes its velocity), and a colour's pivots are solved in lanes: eight at
+//! changes its velocity); the fill then builds each one's record straight
+//! into its lane (its row keeps only a header: see
+//! `Joint::take_lanes`), and a colour's pivots are solved in lanes: eight at
 //! once where the processor has AVX2 ([`dispatch`](super::dispatch)), one at
 //! a time elsewhere, with the same bits, because no two lanes of a colour
 //! share a body the row can move. A pivot that finds no colour, or no room in
@@ -44,9 +46,9 @@
 //! own. Blocks are filled in colour order without padding: a block may hold
 //! the end of one colour and the start of the next, and is then solved in
 //! each with the other's lanes masked, as the contacts' are. The pose pass
-//! (once per sub-step, after the positions are integrated) turns each local
-//! anchor by its body's rotation and measures the position error, as
-//! [`JointLanes::pose`] does, one lane at a time.
+//! (before the first sub-step, and once a sub-step after the positions are
+//! integrated) turns each local anchor by its body's rotation and measures
+//! the position error, as [`JointLanes::pose`] does, one lane at a time.
 
 use crate::arena::Arena;
 use crate::constraint::{Joint, JointMarker, JointRow};
