@@ -271,18 +271,11 @@ impl Joint {
     /// would give its row, the same bits. `None` if the joint is not one.
     #[inline(always)]
     pub(crate) fn pivot_record(&self, sa: &SolverBody, sb: &SolverBody) -> Option<(PointRecord, Scalar)> {
-        let masses = JointMasses {
-            inv_mass: [sa.inv_mass, sb.inv_mass],
-            inv_inertia: [sa.inv_inertia, sb.inv_inertia],
-            anchors: [self.def.anchor_a, self.def.anchor_b],
-            world_point: false,
-            point: true,
-            angular: false,
-            motor: None,
-            limits: None,
-            max_impulse: None,
-            spin_damping: None,
-        };
+        let masses = JointMasses::plain_pivot(
+            [sa.inv_mass, sb.inv_mass],
+            [sa.inv_inertia, sb.inv_inertia],
+            [self.def.anchor_a, self.def.anchor_b],
+        );
         let start = PivotStart::new(&masses, sa, sb)?;
         Some((start.record(sa, sb, self.impulse), start.inv_s()))
     }

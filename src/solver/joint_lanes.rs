@@ -633,6 +633,29 @@ pub(crate) struct JointMasses {
     pub(crate) spin_damping: Option<Softness>,
 }
 
+impl JointMasses {
+    /// A plain pivot's (between two bodies, neither limits nor a motor):
+    /// the bodies' inverse masses and inertias, the local anchors.
+    pub(crate) fn plain_pivot(
+        inv_mass: [Scalar; 2],
+        inv_inertia: [Scalar; 2],
+        anchors: [Vector2; 2],
+    ) -> Self {
+        Self {
+            inv_mass,
+            inv_inertia,
+            anchors,
+            world_point: false,
+            point: true,
+            angular: false,
+            motor: None,
+            limits: None,
+            max_impulse: None,
+            spin_damping: None,
+        }
+    }
+}
+
 impl JointLanes {
     /// Once per step: ratios, softness and the accumulated impulses in lane
     /// formats, and the arms and position error of the first sub-step. `impulse` (N·s) and
@@ -1105,18 +1128,7 @@ mod tests {
             ([ZERO, heavy], [false, true]),
         ] {
             let inv_inertia = inv_mass.map(|m| if m == ZERO { ZERO } else { Scalar::ONE });
-            let m = JointMasses {
-                inv_mass,
-                inv_inertia,
-                anchors: [Vector2::ZERO; 2],
-                world_point: false,
-                point: true,
-                angular: false,
-                motor: None,
-                limits: None,
-                max_impulse: None,
-                spin_damping: None,
-            };
+            let m = JointMasses::plain_pivot(inv_mass, inv_inertia, [Vector2::ZERO; 2]);
             let b = SolverBody::EMPTY;
             let start = PivotStart::new(&m, &b, &b).expect("s > 0");
             let rho = start.side.map(|s| s.rho);
