@@ -291,6 +291,13 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
         self.used_slots().iter().filter(|s| s.generation == 0 && s.value.is_none()).count()
     }
 
+    /// How many inserts in a row would succeed: the free slots, neither live
+    /// nor retired (a scan of the used slots).
+    #[must_use]
+    pub(crate) fn room(&self) -> usize {
+        self.capacity().saturating_sub(self.len()).saturating_sub(self.retired())
+    }
+
     /// The object behind `h`, or `None` for a stale or null handle.
     #[inline]
     #[must_use]

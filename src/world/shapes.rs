@@ -325,6 +325,13 @@ impl World<'_> {
             at = s.next;
         }
         let owner = h.index();
+        // Every error leaves the world unchanged: a slot taken and freed
+        // again would still move the shape store's free list (which the
+        // snapshot and the state hash hold), so the room is checked first.
+        let wanted = old.iter().take(shapes.len()).filter(|&&o| o == NO_SHAPE).count();
+        if wanted > self.paths.slots.room() {
+            return Err(Error::CapacityFull { what: "shape" });
+        }
         let mut slots = old;
         for k in 0..shapes.len() {
             let Some(dst) = slots.get_mut(k) else { break };
