@@ -178,3 +178,39 @@ fn a_minimum_restitution_threshold_is_rejected_or_harmless() {
         w.step(s(1.0 / 60.0)).expect("step");
     }
 }
+
+/// fuzz target `scene_ops` (CI, twelfth session): a one-shape body becoming
+/// compound takes two slots of the shape store (its own shape and the new one).
+/// With one left, `add_shape` returned `CapacityFull { what: "shape" }` but had
+/// taken the free slot and given it back, which moved the store's free list
+/// (in the snapshot and the state hash): "the world is unchanged on every
+/// error" broke, and the world then stepped apart from one that never tried.
+/// The shape store's room is now checked before any slot is taken
+/// (src/world/shapes.rs, `place_shapes`).
+#[test]
+fn a_shape_store_one_slot_short_refuses_and_changes_nothing() {
+    use arphysics::{Error, ShapeDef};
+    let make = || {
+        let caps = Capacities { shapes: 1, ..Capacities::for_bodies(4) };
+        let mut w = World::with_capacities(WorldDef::new(s(100.0), s(100.0)), caps).expect("world");
+        w.add_force_generator(GravityForceGenerator::new(v(0.0, -10.0))).expect("gravity");
+        let b = w.add_body(BodyDef::circle(s(0.5)).position(v(50.0, 50.0))).expect("room");
+        (w, b)
+    };
+    let (mut tried, b) = make();
+    let (mut untouched, _) = make();
+    let hash = tried.state_hash();
+    let full = tried.add_shape(b, ShapeDef::circle(s(0.2)).offset(v(0.6, 0.0)));
+    assert_eq!(full, Err(Error::CapacityFull { what: "shape" }));
+    assert_eq!(tried.state_hash(), hash, "unchanged after a refusal");
+    assert_eq!(tried.state_hash(), untouched.state_hash());
+    let dt = s(1.0 / 60.0);
+    for _ in 0..30 {
+        tried.step(dt).expect("step");
+        untouched.step(dt).expect("step");
+    }
+    assert_eq!(tried.state_hash(), untouched.state_hash(), "the two step alike");
+    // Still a lone circle falling from rest: 0.5 s of gravity, about 1.25 m.
+    let y = tried.body(b).expect("live").position().y.to_num::<f64>();
+    assert!((48.6..48.8).contains(&y), "fell to y = {y}");
+}
