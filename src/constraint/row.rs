@@ -20,7 +20,7 @@ use super::{pivot, rod, spring, target, weld};
 /// A built-in joint's row for one step.
 ///
 /// A plain pivot the pivot lanes take uses only the header (the fields before
-/// [`solve`](Self::solve), first in memory, in one cache line): its bodies,
+/// [`solve`](Self::solve), the row's first 32 bytes): its bodies,
 /// slot, colour, lane and 1/s; the lanes hold the rest, and `solve` keeps
 /// whatever it held. Joint grid (19,800 pivots): writing and reading back the
 /// whole 320-byte row for each pivot cost some 6 MB of memory traffic a step.

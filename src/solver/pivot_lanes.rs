@@ -75,8 +75,8 @@ mod f {
     /// Body slots of A and B.
     pub(super) const IA: usize = 0;
     pub(super) const IB: usize = 1;
-    // Field 2 is spare (it held the row's index, which the end of the
-    // step now takes from the row: see `Solver::store_joints`).
+    // Field 2 is spare (it held the row's index; the end of the step now
+    // goes from each row to its lane: see the solver's `store_joints`).
     /// ρ of A and B (Q2.30).
     pub(super) const RHO: [usize; 2] = [3, 4];
     /// κ of A and B (Q5.27).
@@ -131,6 +131,13 @@ fn block_mut(store: &mut [PivotLanes], b: usize) -> Option<&mut Block> {
     let first = b.checked_mul(LANES)?;
     let records = store.get_mut(first..first.checked_add(LANES)?)?;
     records.as_flattened_mut().try_into().ok()
+}
+
+/// Block `b` of the store, read only ([`block_mut`]).
+fn block(store: &[PivotLanes], b: usize) -> Option<&Block> {
+    let first = b.checked_mul(LANES)?;
+    let records = store.get(first..first.checked_add(LANES)?)?;
+    records.as_flattened().try_into().ok()
 }
 
 /// Lanes the store can hold: whole blocks only.
@@ -264,9 +271,7 @@ fn get(blk: &Block, fi: usize, l: usize) -> i32 {
 /// At the end of the step: the accumulated λ̂ of the pivot in lane `lane`
 /// and the λ̂ it applied over the step, summed (zeros outside the store).
 pub(crate) fn point_state(store: &[PivotLanes], lane: usize) -> ([i32; 2], [i64; 2]) {
-    let first = lane / LANES * LANES;
-    let records = store.get(first..first + LANES).unwrap_or_default();
-    let Ok(blk) = <&Block>::try_from(records.as_flattened()) else { return ([0; 2], [0; 2]) };
+    let Some(blk) = block(store, lane / LANES) else { return ([0; 2], [0; 2]) };
     let l = lane % LANES;
     let sum = |s: usize| join(get(blk, f::SUM[s][0], l), get(blk, f::SUM[s][1], l));
     ([get(blk, f::LAMBDA[0], l), get(blk, f::LAMBDA[1], l)], [sum(0), sum(1)])
