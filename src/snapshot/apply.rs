@@ -48,10 +48,20 @@ pub(super) fn apply(w: &mut World<'_>, l: &Layout<'_>) {
     // follows the shape slots (in body-slot order, as the bodies are).
     let mut recips = Recips::new();
     let mut compounds = Compounds { l, next: 0 };
+    // A properties record is for a run of consecutive bodies: each is read
+    // once for its run.
+    let mut props: Option<(u32, Props)> = None;
     for i in 0..l.bodies.used {
         let Ok(r) = l.body(i) else { continue };
         if r.live() {
-            let Ok(p) = l.props(r.index()) else { continue };
+            let p = match props {
+                Some((at, p)) if at == r.index() => p,
+                _ => {
+                    let Ok(p) = l.props(r.index()) else { continue };
+                    props = Some((r.index(), p));
+                    p
+                }
+            };
             let mut body = body_from(&p, &r, &mut recips);
             if let Some((head, count)) = compounds.of(i) {
                 body.shapes = head;

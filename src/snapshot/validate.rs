@@ -331,7 +331,7 @@ pub(super) fn validate(w: &World<'_>, l: &Layout<'_>) -> Result<(), Error> {
             // The world stops a fixed-rotation body's spin whenever it locks
             // it, and the solver reads the spin from both the body and its
             // own copy, so a snapshot that says otherwise is not one it wrote.
-            if r.angular_velocity != ZERO && l.props(r.index())?.fixed_rotation {
+            if r.angular_velocity != ZERO && l.fixed_rotation(r.index())? {
                 return Err(invalid("a fixed-rotation body that spins"));
             }
             live = live.saturating_add(1);
