@@ -79,25 +79,84 @@ done
 CHECKED=$(date +%s)
 
 # The screenshot: the default scene after 240 frames. Headless Chromium now and
-# then shoots before the module has loaded; the DOM dumped in the same run
-# tells (the frame counter reads 240 once it has), and then it tries again,
-# with more virtual time each attempt (3 s once failed three times in a row on a
-# fresh clone: the page had not loaded the module yet).
+# then shoots before the module has loaded, so the image itself is judged:
+# a loaded page shows the scene's blue boxes and the green "same bits as
+# native" line (a page without its module shows neither). The DOM dumped in
+# the same run cannot tell: this Chromium dumps it before it shoots (a dump
+# reading frame "–" came with a screenshot at frame 240, and five such dumps
+# in a row once failed a CI run whose last screenshot showed frame 240). Up to
+# five attempts, with more virtual time each.
+cat > "$OUT/loaded.py" <<'PY'
+"""True (exit 0) when a screenshot shows the loaded testbed: at least 1,000
+pixels of the box fill (#4f9dd9) and 100 of the "same bits as native" green
+(#0a7a2a). Decodes the 8-bit RGB or RGBA, non-interlaced PNG Chromium writes
+with the standard library alone."""
+import struct, sys, zlib
+
+def rows(path):
+    data = open(path, "rb").read()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        sys.exit("not a PNG")
+    at, idat, header = 8, b"", None
+    while at + 8 <= len(data):
+        n, kind = struct.unpack(">I4s", data[at:at + 8])
+        if kind == b"IHDR":
+            header = struct.unpack(">IIBBBBB", data[at + 8:at + 8 + n])
+        elif kind == b"IDAT":
+            idat += data[at + 8:at + 8 + n]
+        at += 12 + n
+    if header is None:
+        sys.exit("a PNG without a header")
+    width, height, depth, colour, _, _, interlace = header
+    if depth != 8 or colour not in (2, 6) or interlace:
+        sys.exit("an unexpected PNG format %r" % (header,))
+    bpp = 3 if colour == 2 else 4
+    raw, stride = zlib.decompress(idat), width * bpp
+    prev, pos = bytearray(stride), 0
+    for _ in range(height):
+        kind, line = raw[pos], bytearray(raw[pos + 1:pos + 1 + stride])
+        pos += 1 + stride
+        for x in range(stride):
+            a = line[x - bpp] if x >= bpp else 0
+            b = prev[x]
+            c = prev[x - bpp] if x >= bpp else 0
+            if kind == 1:
+                line[x] = (line[x] + a) & 255
+            elif kind == 2:
+                line[x] = (line[x] + b) & 255
+            elif kind == 3:
+                line[x] = (line[x] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        yield bytes(line), bpp
+        prev = line
+
+blue = green = 0
+for line, bpp in rows(sys.argv[1]):
+    for x in range(0, len(line), bpp):
+        px = line[x:x + 3]
+        blue += px == b"\x4f\x9d\xd9"
+        green += px == b"\x0a\x7a\x2a"
+print("%d box pixels, %d of the native-match line" % (blue, green))
+sys.exit(0 if blue >= 1000 and green >= 100 else 1)
+PY
 SHOT=1
 for attempt in 1 2 3 4 5; do
   BUDGET=$((attempt * 5000))
   rm -f "$OUT/testbed.png"
   set +e
   timeout -k 10 120 chromium "${FLAGS[@]}" --window-size=1400,760 --hide-scrollbars \
-    --virtual-time-budget="$BUDGET" --dump-dom --screenshot="$OUT/testbed.png" "$URL?scene=default&frames=240" \
-    2> "$OUT/chromium-screenshot.log" > "$OUT/screenshot-dom.html"
+    --virtual-time-budget="$BUDGET" --screenshot="$OUT/testbed.png" "$URL?scene=default&frames=240" \
+    2> "$OUT/chromium-screenshot.log" > /dev/null
   RC=$?
   set -e
-  if [ "$RC" -eq 0 ] && grep -q 'id="frame">240<' "$OUT/screenshot-dom.html"; then
+  if [ "$RC" -eq 0 ] && [ -s "$OUT/testbed.png" ] && python3 "$OUT/loaded.py" "$OUT/testbed.png" > "$OUT/loaded.txt"; then
     SHOT=0
     break
   fi
-  echo "testbed-check: screenshot attempt $attempt caught the page before it loaded; again"
+  echo "testbed-check: screenshot attempt $attempt did not show the loaded page ($(cat "$OUT/loaded.txt" 2>/dev/null)); again"
 done
 
 python3 - "$OUT" "$SHOT" <<'PY'
