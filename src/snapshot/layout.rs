@@ -117,11 +117,12 @@ fn read_def(c: &mut Cursor<'_>) -> Result<WorldDef, Error> {
     })
 }
 
-/// The bytes [`read_shape`] reads: a kind and three 8-byte words.
+/// The bytes of a shape field: a kind and three 8-byte words.
 const SHAPE_BYTES: usize = 25;
 
-/// A shape field: the kind (1 byte) and 24 bytes, zero-padded (the
-/// properties record's first 25 bytes, and a shape record's).
+/// A shape field ([`SHAPE_BYTES`]): the kind (1 byte) and three words,
+/// zero-padded (the start of a properties record, and of a shape record's
+/// data).
 fn read_shape(c: &mut Cursor<'_>) -> Result<Shape, Error> {
     // What each kind does not use must be zero.
     let (shape, used) = match c.u8()? {
@@ -146,7 +147,7 @@ fn read_shape(c: &mut Cursor<'_>) -> Result<Shape, Error> {
         }
         _ => return Err(invalid("unknown shape")),
     };
-    for _ in used / 8..3 {
+    for _ in used / 8..(SHAPE_BYTES - 1) / 8 {
         if c.u64()? != 0 {
             return Err(invalid("shape padding not zero"));
         }
