@@ -338,6 +338,15 @@ impl<T, K, S: SlotStorage<T>> Arena<'_, T, K, S> {
         slot.value.as_ref().map(|_| Handle::tagged(index, slot.generation, self.tag))
     }
 
+    /// The handle of the live object in slot `index` and the object, if
+    /// any: [`handle_at`](Self::handle_at) and [`get_at`](Self::get_at) from
+    /// one look at the slot.
+    #[inline]
+    pub(crate) fn entry_at(&self, index: u32) -> Option<(Handle<K>, &T)> {
+        let slot = self.slots.slots().get(index as usize)?;
+        Some((Handle::tagged(index, slot.generation, self.tag), slot.value.as_ref()?))
+    }
+
     /// The live object in slot `index`, if any (no generation check).
     #[inline]
     #[must_use]

@@ -35,8 +35,6 @@
 //! then solved in each with the other's lanes masked.
 
 use crate::arbiter::Arbiter;
-use crate::arena::Arena;
-use crate::body::Body;
 use crate::math::scalar::{Scalar, ZERO};
 
 use super::contact::{self, Block, NO_LANE};
@@ -117,12 +115,7 @@ fn run_of(colour: u8) -> usize {
 /// (inlined into `solve` it cost the 20-row pyramid 0.7 % more
 /// instructions).
 #[inline(never)]
-pub(crate) fn build(
-    bodies: &Arena<'_, Body>,
-    arbiters: &mut [Arbiter],
-    solver: &mut Solver<'_>,
-    scales: (Scalar, Scalar),
-) {
+pub(crate) fn build(arbiters: &mut [Arbiter], solver: &mut Solver<'_>, scales: (Scalar, Scalar)) {
     let mut counts = [0u32; RUNS];
     // Two-point manifolds per run: each run lays them out first, so that the
     // kernels' second-point work (skipped for blocks of one-point manifolds)
@@ -139,10 +132,10 @@ pub(crate) fn build(
         if !arb.solve {
             continue;
         }
-        if bodies.get(arb.body_a).is_none() || bodies.get(arb.body_b).is_none() {
-            arb.solve = false;
-            continue;
-        }
+        // By slot, without looking the handles up: the lifecycle has just
+        // written every live arbiter with the handles it found live, and
+        // nothing between it and the solve can remove a body (its callbacks
+        // see the bodies shared).
         let (ia, ib) = (arb.body_a.index() as usize, arb.body_b.index() as usize);
         let sbodies: &mut [SolverBody] = &mut solver.bodies;
         let (Some(ma), Some(mb)) = (sbodies.get(ia), sbodies.get(ib)) else {

@@ -293,7 +293,7 @@ fn load(
         }
     }
     let scales = (ctx.contact_softness.mass_scale, ctx.static_softness.mass_scale);
-    colour::build(bodies, arbiters.live_mut(), solver, scales);
+    colour::build(arbiters.live_mut(), solver, scales);
     arbiters.mark_built();
 }
 

@@ -542,8 +542,10 @@ pub(crate) fn prepare(
 ) -> Option<[[Scalar; 2]; 2]> {
     let (side_a, side_b) = (Side::new(sa), Side::new(sb));
     let pair = Pair::new(&side_a, &side_b);
+    // A kept lane holds the bodies' slots and the normal already (the same
+    // arbiter's, its manifold recycled): written only in a full build.
     let unit = |x: Scalar| lane(x, FU, 1);
-    let n = [unit(arb.normal.x), unit(arb.normal.y)];
+    let n = if again { [0; 2] } else { [unit(arb.normal.x), unit(arb.normal.y)] };
     let t = [n[1], -n[0]];
     let static_pair = side_a.m == ZERO || side_b.m == ZERO;
     let mut flags = 0;
@@ -556,10 +558,12 @@ pub(crate) fn prepare(
     if static_pair {
         flags |= STATIC_PAIR;
     }
-    put(blk, f::IA, l, i64::from(ia));
-    put(blk, f::IB, l, i64::from(ib));
-    put(blk, f::NX, l, n[0]);
-    put(blk, f::NY, l, n[1]);
+    if !again {
+        put(blk, f::IA, l, i64::from(ia));
+        put(blk, f::IB, l, i64::from(ib));
+        put(blk, f::NX, l, n[0]);
+        put(blk, f::NY, l, n[1]);
+    }
     put(blk, f::E, l, lane(arb.restitution, FU, 1));
     let vel = [(sa.v, sa.w), (sb.v, sb.w)];
     let shared = Shared {
