@@ -341,7 +341,7 @@ impl<'b, const W: usize> View<'b, W> {
 #[inline(always)]
 fn apply_side<const W: usize, const NEG: bool>(v: &mut [L<W>; 3], rho: L<W>, g: [L<W>; 2], p: [L<W>; 2]) {
     let (mut dx, mut dy) = (rho.mul::<FU>(p[0]), rho.mul::<FU>(p[1]));
-    let mut dw = L64::mul_shift::<FH>(g[0], p[1]).sub(L64::mul_shift::<FH>(g[1], p[0]));
+    let mut dw = L64::mul_shift_biased::<FH>(g[0], p[1]).sub(L64::mul_shift_biased::<FH>(g[1], p[0]));
     if NEG {
         (dx, dy, dw) = (dx.neg(), dy.neg(), dw.neg());
     }
@@ -355,8 +355,8 @@ fn apply_side<const W: usize, const NEG: bool>(v: &mut [L<W>; 3], rho: L<W>, g: 
 #[inline(always)]
 fn anchor_velocity<const W: usize>(vel: &[L<W>; 3], r: [L<W>; 2]) -> [L64<W>; 2] {
     [
-        L64::from(vel[0]).sub(L64::mul_shift::<FH>(vel[2], r[1])),
-        L64::from(vel[1]).add(L64::mul_shift::<FH>(vel[2], r[0])),
+        L64::from(vel[0]).sub(L64::mul_shift_biased::<FH>(vel[2], r[1])),
+        L64::from(vel[1]).add(L64::mul_shift_biased::<FH>(vel[2], r[0])),
     ]
 }
 
@@ -383,14 +383,15 @@ fn iterate<const W: usize>(
         let mut rate = ab[k].sub(aa[k]);
         if !relax {
             let d = v.ld(f::D[k]);
-            rate = rate.add(L64::mul_shift::<{ FD + FQ - FV }>(d, L::splat(soft.rate)).clamp_abs(BIAS_MAX));
+            rate = rate
+                .add(L64::mul_shift_biased::<{ FD + FQ - FV }>(d, L::splat(soft.rate)).clamp_abs(BIAS_MAX));
         }
         u[k] = rate.clamp_abs(RATE_MAX).narrow();
     }
     let (m11, m12, m22) = (v.ld(f::M11), v.ld(f::M12), v.ld(f::M22));
     let mu = [
-        L64::mul_shift::<FU>(m11, u[0]).add(L64::mul_shift::<FU>(m12, u[1])),
-        L64::mul_shift::<FU>(m12, u[0]).add(L64::mul_shift::<FU>(m22, u[1])),
+        L64::mul_shift_biased::<FU>(m11, u[0]).add(L64::mul_shift_biased::<FU>(m12, u[1])),
+        L64::mul_shift_biased::<FU>(m12, u[0]).add(L64::mul_shift_biased::<FU>(m22, u[1])),
     ];
     let mut applied = [L::splat(0); 2];
     for k in 0..2 {
@@ -400,9 +401,9 @@ fn iterate<const W: usize>(
             L64::from(mu).neg()
         } else {
             // −s_m·μ − s_i·λ̂.
-            L64::mul_shift::<FU>(mu, L::splat(soft.mass_scale))
+            L64::mul_shift_biased::<FU>(mu, L::splat(soft.mass_scale))
                 .neg()
-                .sub(L64::mul_shift::<FU>(L::splat(soft.impulse_scale), old[k]))
+                .sub(L64::mul_shift_biased::<FU>(L::splat(soft.impulse_scale), old[k]))
         };
         let new = L64::from(old[k]).add(delta).clamp_abs(i64::from(LAMBDA_MAX)).narrow();
         v.st(f::LAMBDA[k], new, m);
@@ -457,8 +458,8 @@ fn pose_kernel<const W: usize>(v: &mut View<'_, W>, m: M<W>, bodies: &[SolverBod
         let r = [c.mul::<FU>(x).sub(sn.mul::<FU>(y)), sn.mul::<FU>(x).add(c.mul::<FU>(y))];
         let (iota, kappa) = (v.ld(f::IOTA[s]), v.ld(f::KAPPA[s]));
         for ((rk, rh_field), g_field) in r.into_iter().zip(f::RH[s]).zip(f::G[s]) {
-            let rh = L64::mul_shift::<{ 2 * FA - FH }>(rk, iota).clamp_abs(ARM_HAT_MAX << FH).narrow();
-            let g = L64::mul_shift::<FK>(kappa, rh).clamp_abs(G_MAX << FH).narrow();
+            let rh = L64::mul_shift_biased::<{ 2 * FA - FH }>(rk, iota).clamp_abs(ARM_HAT_MAX << FH).narrow();
+            let g = L64::mul_shift_biased::<FK>(kappa, rh).clamp_abs(G_MAX << FH).narrow();
             v.st(rh_field, rh, m);
             v.st(g_field, g, m);
         }
