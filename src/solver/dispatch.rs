@@ -145,14 +145,15 @@ fn run_avx2<K: Kernel>(solver: &mut Solver<'_>, sweep: Sweep, k: &K) {
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
 pub(crate) mod avx2 {
     use core::arch::x86_64::{
-        __m256i, _mm256_add_epi64, _mm256_blend_epi32, _mm256_blendv_epi8, _mm256_mul_epi32,
-        _mm256_permute2x128_si256, _mm256_set1_epi32, _mm256_set1_epi64x, _mm256_shuffle_epi32,
-        _mm256_sll_epi64, _mm256_srl_epi64, _mm256_unpackhi_epi32, _mm256_unpackhi_epi64,
-        _mm256_unpacklo_epi32, _mm256_unpacklo_epi64, _mm_cvtsi32_si128,
+        __m256i, _mm256_add_epi64, _mm256_blend_epi32, _mm256_blendv_epi8, _mm256_loadu_si256,
+        _mm256_mul_epi32, _mm256_permute2x128_si256, _mm256_set1_epi32, _mm256_set1_epi64x,
+        _mm256_shuffle_epi32, _mm256_sll_epi64, _mm256_srl_epi64, _mm256_unpackhi_epi32,
+        _mm256_unpackhi_epi64, _mm256_unpacklo_epi32, _mm256_unpacklo_epi64, _mm_cvtsi32_si128,
     };
     use core::mem::transmute;
 
-    use crate::solver::BodyLanes;
+    use crate::math::{Rot, Vector2};
+    use crate::solver::{BodyLanes, SolverBody};
 
     /// `(a·b + 2^(K−1)) >> K` on the exact 64-bit products, narrowed to
     /// `i32` ([`lanes::mul`](crate::solver::lanes::mul)), eight lanes: the
@@ -221,6 +222,71 @@ pub(crate) mod avx2 {
         reverse: bool,
     ) {
         crate::solver::contact::push_apart::<8, TWO>(blk, base, bodies, deep, params, reverse);
+    }
+
+    /// The rotation and position of the bodies `idx` selects, as the pivot
+    /// lanes' pose pass reads them: the bits of cos, sin, x and y, one array
+    /// of eight lanes each (an index out of range reads
+    /// [`SolverBody::EMPTY`]). Each body's position and rotation are one
+    /// 32-byte load (they lie side by side in the record), then two 4×4
+    /// transposes by 64-bit interleaves and 128-bit permutes. A lane at a
+    /// time (and from four loads a body, which the compiler turns the same
+    /// transposes back into) the gather took four loads and four stores to
+    /// the stack a lane, each side of each block, five passes a step.
+    #[inline(always)]
+    pub(crate) fn gather_pose(bodies: &[SolverBody], idx: [i32; 8]) -> [[i64; 8]; 4] {
+        // The position's two words, then the rotation's.
+        const AT: usize = core::mem::offset_of!(SolverBody, p);
+        const ADJACENT: bool = core::mem::offset_of!(SolverBody, q) == AT + 16
+            && core::mem::offset_of!(Vector2, x) == 0
+            && core::mem::offset_of!(Vector2, y) == 8
+            && core::mem::offset_of!(Rot, c) == 0
+            && core::mem::offset_of!(Rot, s) == 8
+            && size_of::<Vector2>() == 16
+            && size_of::<Rot>() == 16
+            && size_of::<crate::math::scalar::Scalar>() == 8;
+        let row = |i: i32| {
+            let sb = bodies.get(i as u32 as usize).unwrap_or(&SolverBody::EMPTY);
+            if ADJACENT {
+                // SAFETY: the 32 bytes from offset `AT` are `p` and `q` of
+                // `*sb` (checked above), plain integers inside one live
+                // record read through a pointer derived from a reference
+                // to the whole record; an unaligned load needs no
+                // alignment; AVX2 as in `mul`.
+                unsafe {
+                    _mm256_loadu_si256((sb as *const SolverBody).cast::<u8>().add(AT).cast::<__m256i>())
+                }
+            } else {
+                let words = [sb.p.x.to_bits(), sb.p.y.to_bits(), sb.q.c.to_bits(), sb.q.s.to_bits()];
+                // SAFETY: a plain integer transmute.
+                unsafe { transmute::<[i64; 4], __m256i>(words) }
+            }
+        };
+        let [i0, i1, i2, i3, i4, i5, i6, i7] = idx;
+        // SAFETY: as in `mul`: plain integer transmutes, and AVX2 intrinsics
+        // reached only under `pivots_avx2`, which runs only when AVX2 was
+        // detected.
+        unsafe {
+            // Four rows [x, y, c, s] to four columns of four lanes.
+            let columns = |r0: __m256i, r1: __m256i, r2: __m256i, r3: __m256i| {
+                // x0 x1 | c0 c1, y0 y1 | s0 s1, and the same for rows 2, 3.
+                let (a, b) = (_mm256_unpacklo_epi64(r0, r1), _mm256_unpackhi_epi64(r0, r1));
+                let (c, d) = (_mm256_unpacklo_epi64(r2, r3), _mm256_unpackhi_epi64(r2, r3));
+                [
+                    _mm256_permute2x128_si256::<0x20>(a, c),
+                    _mm256_permute2x128_si256::<0x20>(b, d),
+                    _mm256_permute2x128_si256::<0x31>(a, c),
+                    _mm256_permute2x128_si256::<0x31>(b, d),
+                ]
+            };
+            let lo = columns(row(i0), row(i1), row(i2), row(i3));
+            let hi = columns(row(i4), row(i5), row(i6), row(i7));
+            let join = |k: usize| {
+                let (a, b) = (transmute::<__m256i, [i64; 4]>(lo[k]), transmute::<__m256i, [i64; 4]>(hi[k]));
+                [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]
+            };
+            [join(2), join(3), join(0), join(1)]
+        }
     }
 
     /// Fields 0–5 of the records `idx` selects (an index out of range reads

@@ -440,6 +440,16 @@ impl<const W: usize> M<W> {
 pub(crate) struct L64<const W: usize>(pub(crate) [i64; W]);
 
 impl<const W: usize> L64<W> {
+    /// Eight lanes as `W` (`W` = 8; other widths are padded or cut).
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[inline(always)]
+    pub(crate) fn from8(x: [i64; LANES]) -> Self {
+        let mut r = [0; W];
+        for (r, x) in r.iter_mut().zip(x) {
+            *r = x;
+        }
+        Self(r)
+    }
     /// Sign-extended from `i32` lanes.
     #[inline(always)]
     pub(crate) fn from(x: L<W>) -> Self {

@@ -431,6 +431,10 @@ fn round<const W: usize, const F: u32>(x: L64<W>, bound: i64) -> L<W> {
 /// its position, each a `Scalar`'s bits.
 #[inline(always)]
 fn body_pose<const W: usize>(bodies: &[SolverBody], idx: L<W>) -> [L64<W>; 4] {
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    if W == LANES {
+        return super::dispatch::avx2::gather_pose(bodies, idx.to8()).map(L64::from8);
+    }
     let mut r = [[0i64; W]; 4];
     for (i, &b) in idx.0.iter().enumerate() {
         let sb = bodies.get(b as u32 as usize).unwrap_or(&SolverBody::EMPTY);
