@@ -194,11 +194,12 @@ mod tests {
 
     /// The pivot kernels' biased product shift gives `mul_shift`'s bits (and
     /// the exact rounded quotient) at the ends of the `i32` range, at ±½ ulp
-    /// and on random lanes, for shifts the kernels use (20: the joints' FH;
-    /// FU) and the extremes.
+    /// and on random lanes, for every shift the pivot kernels use and the
+    /// extremes.
     /// (Its eight-lane form is plain code, safe on any processor.)
     #[test]
     fn biased_product_shift_equals_the_arithmetic_one() {
+        use crate::solver::joint_lanes::{FA, FD, FH, FK};
         fn check<const K: u32>(a: [i32; LANES], b: [i32; LANES]) {
             let (a, b) = (L(a), L(b));
             let got = L64::<LANES>::mul_shift_biased::<K>(a, b);
@@ -229,13 +230,28 @@ mod tests {
                 };
             }
             check::<1>(a, b);
-            check::<20>(a, b);
+            check::<FH>(a, b);
             check::<FU>(a, b);
+            check::<{ FD + FQ - FV }>(a, b);
+            check::<{ 2 * FA - FH }>(a, b);
+            check::<FK>(a, b);
             check::<31>(a, b);
             check::<32>(a, b);
             check::<62>(a, b);
         }
     }
+}
+
+/// Eight lanes as `W` (`W` = 8; other widths are padded with zeros or cut):
+/// the AVX2 helpers' eight-lane results as the kernels' lane types.
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[inline(always)]
+fn resized<T: Copy + Default, const W: usize>(x: [T; LANES]) -> [T; W] {
+    let mut r = [T::default(); W];
+    for (r, x) in r.iter_mut().zip(x) {
+        *r = x;
+    }
+    r
 }
 
 /// `W` lanes of `i32`: the kernels are written once over these and compiled
@@ -287,11 +303,7 @@ impl<const W: usize> L<W> {
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     #[inline(always)]
     pub(crate) fn from8(x: [i32; LANES]) -> Self {
-        let mut r = [0; W];
-        for (r, x) in r.iter_mut().zip(x) {
-            *r = x;
-        }
-        Self(r)
+        Self(resized(x))
     }
     #[inline(always)]
     pub(crate) fn splat(x: i32) -> Self {
@@ -444,11 +456,7 @@ impl<const W: usize> L64<W> {
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     #[inline(always)]
     pub(crate) fn from8(x: [i64; LANES]) -> Self {
-        let mut r = [0; W];
-        for (r, x) in r.iter_mut().zip(x) {
-            *r = x;
-        }
-        Self(r)
+        Self(resized(x))
     }
     /// Sign-extended from `i32` lanes.
     #[inline(always)]
