@@ -6,11 +6,17 @@
 //! Run all: `cargo bench --bench scenes`; one: `cargo bench --bench scenes -- pyramid_20`.
 //! `-- --narrow` adds the narrow phase timed alone; `-- --quick` takes one
 //! sample per scene (for `valgrind --tool=callgrind`, whose instruction counts
-//! per stage do not depend on the load of a shared machine).
+//! per stage do not depend on the load of a shared machine). `-- --levels`
+//! measures what the run-time SIMD dispatch gains instead: each scene built
+//! twice, one world stepped at `SimdLevel::Portable` and one at the best level
+//! this processor offers, sample by sample in turn (see [`levels`]).
 
 use std::time::Instant;
 
-use arphysics::{Arbiter, Body, Capacities, PolygonPath, Scalar, Slot, Storage, World};
+use arphysics::{
+    limit_simd_level, simd_level, Arbiter, Body, Capacities, PolygonPath, Scalar, SimdLevel, Slot, Storage,
+    World,
+};
 
 #[path = "scenes/defs.rs"]
 mod defs;
@@ -89,12 +95,78 @@ fn narrow_phase(name: &str, w: &World<'_>) -> Result<(), arphysics::Error> {
     Ok(())
 }
 
+/// One scene at two SIMD levels: two worlds built alike, one stepped with the
+/// contact and pivot kernels at `SimdLevel::Portable` (one lane at a time) and
+/// one at the best level this processor offers, `steps` steps a sample, the
+/// two in turn (each first in every other sample) so that both see the same
+/// load. The worlds stay bit-identical
+/// (the levels compute the same bits), which the state hashes at the end
+/// check. Prints each level's median thread CPU ms/step and the median of the
+/// per-sample ratios.
+fn levels(name: &str, build: Build, steps: usize, samples: usize) -> Result<(), arphysics::Error> {
+    limit_simd_level(SimdLevel::Avx2);
+    let best = simd_level();
+    let dt = s(1.0 / 60.0);
+    let (mut portable, mut fast) = (build()?, build()?);
+    for w in [&mut portable, &mut fast] {
+        for _ in 0..30 {
+            w.step(dt)?;
+        }
+    }
+    let run = |w: &mut World<'_>, level: SimdLevel| -> Result<Option<f64>, arphysics::Error> {
+        limit_simd_level(level);
+        let c0 = thread_cpu_ns();
+        for _ in 0..steps {
+            w.step(dt)?;
+        }
+        Ok(c0.zip(thread_cpu_ns()).map(|(c0, c1)| c1.saturating_sub(c0) as f64 / 1e6 / steps as f64))
+    };
+    let (mut p, mut f, mut ratio) = (Vec::new(), Vec::new(), Vec::new());
+    for k in 0..samples {
+        // Each level goes first in every other sample.
+        let (tp, tf) = if k % 2 == 0 {
+            let tp = run(&mut portable, SimdLevel::Portable)?;
+            (tp, run(&mut fast, best)?)
+        } else {
+            let tf = run(&mut fast, best)?;
+            (run(&mut portable, SimdLevel::Portable)?, tf)
+        };
+        let (Some(tp), Some(tf)) = (tp, tf) else {
+            println!("{name:>14}: no thread CPU clock on this system");
+            return Ok(());
+        };
+        p.push(tp);
+        f.push(tf);
+        ratio.push(tp / tf);
+    }
+    limit_simd_level(SimdLevel::Avx2);
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let same = portable.state_hash() == fast.state_hash();
+    println!(
+        "{name:>14}: Portable {:.3} ms/step, {best:?} {:.3} ms/step (thread CPU, medians of {samples}); \
+         Portable / {best:?} {:.2} (median of the samples' ratios, {:.2}–{:.2}); state hashes {}",
+        median(&mut p),
+        median(&mut f),
+        median(&mut ratio.clone()),
+        ratio.iter().copied().fold(f64::INFINITY, f64::min),
+        ratio.iter().copied().fold(0.0, f64::max),
+        if same { "equal" } else { "DIFFER" },
+    );
+    assert!(same, "{name}: the SIMD levels stepped to different states");
+    Ok(())
+}
+
 fn main() -> Result<(), arphysics::Error> {
     let filter: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
     // `--narrow`: also time the narrow phase alone (large_pyramid and rain).
     // `--quick`: one sample per scene (for instruction counts under valgrind).
     let narrow = std::env::args().any(|a| a == "--narrow");
     let quick = std::env::args().any(|a| a == "--quick");
+    // `--levels`: the SIMD dispatch's gain (see `levels`).
+    let by_level = std::env::args().any(|a| a == "--levels");
     let scenes: [(&str, Build, usize, usize); 5] = [
         ("pyramid_20", || pyramid_20(plain_world), 60, 15),
         ("rain", || rain(plain_world), 30, 7),
@@ -105,6 +177,12 @@ fn main() -> Result<(), arphysics::Error> {
     let dt = s(1.0 / 60.0);
     for (name, build, steps, samples) in scenes {
         if !filter.is_empty() && !filter.iter().any(|f| name.contains(f.as_str())) {
+            continue;
+        }
+        if by_level {
+            // Five times the steps a sample: the thread CPU clock advances at
+            // the scheduler's ticks, a few ms, too coarse for 12 ms samples.
+            levels(name, build, steps * 5, if quick { 1 } else { samples })?;
             continue;
         }
         let mut w = build()?;
