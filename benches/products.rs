@@ -1,10 +1,12 @@
-//! The cost of one Q32.32 product on this machine: the unit the engine's speed is
-//! made of (a pyramid_20 step takes about 478,000 of them; see the README's
-//! "Performance"). Each product here is a saturating `*` followed by a saturating `+` over
-//! arrays of independent values, so the processor overlaps as many as it can:
-//! a throughput, the best case for the engine's code. Beside it, for scale: the
-//! same in Q16.16 `i32` lanes (what a narrower solver format would cost), with
-//! and without range checks, and a vectorised f32 multiply-add.
+//! The cost of one Q32.32 product on this machine: the unit of the stages that
+//! work in `Scalar` (the per-body sub-step, the arbiter lifecycle, the narrow
+//! phase; about half of a contact step, see `docs/design/solver-lanes.md` §31),
+//! while the solver's kernels use the 32-bit lanes measured beside it (issue 16
+//! chose them from these figures). Each product here is a saturating `*`
+//! followed by a saturating `+` over arrays of independent values, so the
+//! processor overlaps as many as it can: a throughput, the best case for the
+//! engine's code. Beside it, for scale: the same in Q16.16 `i32` lanes, with and
+//! without range checks, and a vectorised f32 multiply-add.
 //!
 //! Run: `cargo bench --bench products`.
 
