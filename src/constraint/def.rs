@@ -25,7 +25,7 @@ pub enum MaxTorque {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Motor {
     /// Target relative angular speed, rad/s, within
-    /// ±[`MAX_MOTOR_SPEED`](crate::limits::MAX_MOTOR_SPEED) (512).
+    /// ±[`MAX_MOTOR_SPEED`] (512).
     pub speed: Scalar,
     /// Torque limit.
     pub max_torque: MaxTorque,
@@ -36,28 +36,28 @@ pub struct Motor {
 pub enum JointKind {
     /// A spring of `stiffness` N/m and rest length `rest_length` m.
     Spring {
-        /// N/m, in [0, [`MAX_STIFFNESS`](crate::limits::MAX_STIFFNESS)] (1e6).
+        /// N/m, in [0, [`MAX_STIFFNESS`]] (1e6).
         stiffness: Scalar,
-        /// m, in [0, [`MAX_JOINT_LENGTH`](crate::limits::MAX_JOINT_LENGTH)] (1,024).
+        /// m, in [0, [`MAX_JOINT_LENGTH`]] (1,024).
         rest_length: Scalar,
     },
     /// A spring with a damper of `damping` N·s/m.
     DampedSpring {
-        /// N/m, in [0, [`MAX_STIFFNESS`](crate::limits::MAX_STIFFNESS)] (1e6).
+        /// N/m, in [0, [`MAX_STIFFNESS`]] (1e6).
         stiffness: Scalar,
-        /// N·s/m, in [0, [`MAX_DAMPING`](crate::limits::MAX_DAMPING)] (1e5).
+        /// N·s/m, in [0, [`MAX_DAMPING`]] (1e5).
         damping: Scalar,
-        /// m, in [0, [`MAX_JOINT_LENGTH`](crate::limits::MAX_JOINT_LENGTH)] (1,024).
+        /// m, in [0, [`MAX_JOINT_LENGTH`]] (1,024).
         rest_length: Scalar,
     },
     /// Keeps the anchors exactly `length` m apart (the manual's Rod).
     Rod {
-        /// m, in (0, [`MAX_JOINT_LENGTH`](crate::limits::MAX_JOINT_LENGTH)] (1,024).
+        /// m, in (0, [`MAX_JOINT_LENGTH`]] (1,024).
         length: Scalar,
     },
     /// Keeps the anchors at most `max_length` m apart; slack below.
     Rope {
-        /// m, in (0, [`MAX_JOINT_LENGTH`](crate::limits::MAX_JOINT_LENGTH)] (1,024).
+        /// m, in (0, [`MAX_JOINT_LENGTH`]] (1,024).
         max_length: Scalar,
     },
     /// Pins the anchors together; the bodies turn freely, within optional limits
@@ -84,12 +84,12 @@ pub enum JointKind {
     /// ([`TARGET_SPIN_HERTZ`](crate::constraint::TARGET_SPIN_HERTZ)); removing
     /// the joint lets it fly on with its speed (a throw).
     Target {
-        /// Frequency of the spring, Hz, in (0, [`MAX_TARGET_HERTZ`](crate::limits::MAX_TARGET_HERTZ)] (1,000).
+        /// Frequency of the spring, Hz, in (0, [`MAX_TARGET_HERTZ`]] (1,000).
         hertz: Scalar,
         /// Damping ratio (1: critically damped), in [0,
-        /// [`MAX_DAMPING_RATIO`](crate::limits::MAX_DAMPING_RATIO)] (100).
+        /// [`MAX_DAMPING_RATIO`]] (100).
         damping_ratio: Scalar,
-        /// Largest force, N, in [0, [`MAX_FORCE`](crate::limits::MAX_FORCE)]: the
+        /// Largest force, N, in [0, [`MAX_FORCE`]]: the
         /// accumulated impulse of each sub-step is clamped to `max_force`·h by
         /// length.
         max_force: Scalar,

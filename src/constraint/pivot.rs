@@ -1,7 +1,7 @@
 //! Pivot (revolute) joint: a point constraint, optional angle limits, optional motor.
 //!
 //! The iterations run in the solver's 32-bit formats
-//! ([`JointLanes`](crate::solver::JointLanes)); the relative angle the limits
+//! ([`JointLanes`]); the relative angle the limits
 //! need is measured here, once per sub-step, with the pose.
 
 use crate::math::scalar::Scalar;

@@ -1,6 +1,6 @@
 //! A joint's row in the solver's dense joint array: what the sub-steps of one
 //! step need of a built-in joint, and the dispatch of each solver stage to its
-//! kind's file ([`rod`](super::rod), [`pivot`](super::pivot), …).
+//! kind's file ([`rod`], [`pivot`], …).
 //!
 //! The rows are scratch, as the contacts' constraints are: prepare builds one
 //! per joint whose bodies are there, in joint-slot order

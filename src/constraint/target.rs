@@ -2,7 +2,7 @@
 //! soft point constraint with a force limit.
 //!
 //! The point constraint of pivots and welds, in the solver's 32-bit formats
-//! ([`JointLanes`](crate::solver::JointLanes)), with two differences: its
+//! ([`JointLanes`]), with two differences: its
 //! softness is the joint's own spring (frequency and damping ratio, set at
 //! prepare) instead of the joints' stiff position correction, and it stays
 //! soft and biased in the relax sweep too (a spring, not an error to remove:

@@ -75,7 +75,7 @@
 //! a snapshot taken in the same state; it is computed without a buffer, at
 //! about the cost of writing a snapshot. [`World::state_hashes`] gives one such
 //! hash per part of the state ([`StateHashes`]) for locating a desync without
-//! exchanging snapshots; [`diff`] then names the object and field.
+//! exchanging snapshots; [`fn@diff`] then names the object and field.
 
 //! # What is not in it
 //! Polygon paths and chains are static data: the snapshot carries their
@@ -327,7 +327,7 @@ impl World<'_> {
     /// generators, contacts, joints, allocators), over the same encoding as
     /// [`World::state_hash`] (which is [`StateHashes::all`]). Peers that disagree
     /// on the state hash can exchange these few words to learn which part
-    /// diverged before they exchange whole snapshots for [`diff`].
+    /// diverged before they exchange whole snapshots for [`fn@diff`].
     #[must_use]
     pub fn state_hashes(&self) -> StateHashes {
         let plan = write::Plan::of(self);

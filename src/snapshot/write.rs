@@ -81,7 +81,7 @@ pub(super) struct Plan {
 }
 
 impl Plan {
-    /// Counts; encodes nothing. Must agree with [`write`] byte for byte (a test
+    /// Counts; encodes nothing. Must agree with [`fn@write`] byte for byte (a test
     /// compares it with a counting sink).
     pub(super) fn of(w: &World<'_>) -> Self {
         let (mut props, mut compounds) = (0u32, 0u32);

@@ -3,7 +3,7 @@
 //! The contact sweeps gather and scatter each body a dozen times a step, so a
 //! body's lane record ([`BodyLanes`]: velocity, rim speed, and the position
 //! and rim-rotation change since the step began, in the formats of
-//! [`lanes`](super::lanes)) is 32 bytes in an array of its own. The rest
+//! [`lanes`]) is 32 bytes in an array of its own. The rest
 //! ([`SolverBody`]) is the `Scalar` state that the joints, the integration
 //! and the store use, and the per-body constants of the step.
 
@@ -13,7 +13,7 @@ use crate::math::{Rot, Vector2};
 
 use super::lanes::{self, FP, FV};
 
-/// Index of the linear velocity's x component in [`SolverBody::lane`].
+/// Index of the linear velocity's x component in [`BodyLanes`].
 pub(crate) const VX: usize = 0;
 /// … its y component.
 pub(crate) const VY: usize = 1;

@@ -199,7 +199,7 @@ impl JointStep {
 
 /// M̂ = (K/s)⁻¹ as (m11, m12, m22), from the normalised masses (`ma` = ρ_A,
 /// `ia` = (1/I_A)/s, …) and the arms. K/s is (ρ_A + ρ_B)·I plus the arms'
-/// terms (1/I)/s·[r]ᵀ[r], so its eigenvalues are ≥ ρ_A + ρ_B = 1, its
+/// terms (1/I)/s·\[r\]ᵀ\[r\], so its eigenvalues are ≥ ρ_A + ρ_B = 1, its
 /// determinant is ≥ 1 and one reciprocal serves the three entries. `None`
 /// when singular (only when the entries saturate).
 fn point_mass(

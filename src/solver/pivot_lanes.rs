@@ -32,8 +32,9 @@
 //! passes 10 m/s and the tracked body ends where Box2D's does (y = −101.67 m
 //! against −101.74 m); see `docs/design/solver-lanes.md` §21.
 //!
-//! **Numbers.** Each lane computes exactly what [`JointLanes`]'s point row
-//! computes for one joint (the same formats, products, roundings and clamps,
+//! **Numbers.** Each lane computes exactly what
+//! [`JointLanes`](super::joint_lanes::JointLanes)'s point row computes for
+//! one joint (the same formats, products, roundings and clamps,
 //! written as lane operations, its 64-bit sums in 64-bit lanes), so a pivot
 //! gives the same bits in a lane as one at a time in the same order; the
 //! kernels' unit test holds them to it. What changes with the lanes is only
@@ -48,7 +49,9 @@
 //! each with the other's lanes masked, as the contacts' are. The pose pass
 //! (before the first sub-step, and once a sub-step after the positions are
 //! integrated) turns each local anchor by its body's rotation and measures
-//! the position error, as [`JointLanes::pose`] does, one lane at a time.
+//! the position error, as
+//! [`JointLanes::pose`](super::joint_lanes::JointLanes::pose) does, one lane
+//! at a time.
 
 use crate::arena::Arena;
 use crate::constraint::{Joint, JointMarker, JointRow};
@@ -337,7 +340,8 @@ impl<'b, const W: usize> View<'b, W> {
 }
 
 /// One body side's change from a point impulse `p` (velocity units),
-/// negated for A: [`JointLanes`]'s `Side::apply_point`, lane by lane.
+/// negated for A: [`JointLanes`](super::joint_lanes::JointLanes)'s
+/// `Side::apply_point`, lane by lane.
 #[inline(always)]
 fn apply_side<const W: usize, const NEG: bool>(v: &mut [L<W>; 3], rho: L<W>, g: [L<W>; 2], p: [L<W>; 2]) {
     let (mut dx, mut dy) = (rho.mul::<FU>(p[0]), rho.mul::<FU>(p[1]));
@@ -447,9 +451,11 @@ fn body_pose<const W: usize>(bodies: &[SolverBody], idx: L<W>) -> [L64<W>; 4] {
     r.map(L64)
 }
 
-/// The pose pass on lanes `m` of view `v`: [`arm_at`] for each side and
-/// [`position_error`], lane by lane (the same bits; the unit test compares
-/// them with [`JointLanes::pose`]).
+/// The pose pass on lanes `m` of view `v`:
+/// [`arm_at`](super::joint_lanes::arm_at) for each side and
+/// [`position_error`](super::joint_lanes::position_error), lane by lane (the
+/// same bits; the unit test compares them with
+/// [`JointLanes::pose`](super::joint_lanes::JointLanes::pose)).
 #[inline(always)]
 fn pose_kernel<const W: usize>(v: &mut View<'_, W>, m: M<W>, bodies: &[SolverBody]) {
     let mut arms = [[L::splat(0); 2]; 2];

@@ -12,9 +12,9 @@
 //! field one 32-byte load. Constraints are placed in the blocks in graph-colour
 //! order (see [`colour`](super::colour)).
 //!
-//! The stages, one file each: [`prepare`] builds a lane from an arbiter (in
+//! The stages, one file each: [`mod@prepare`] builds a lane from an arbiter (in
 //! `Scalar`, where the masses are), [`kernel`] warm-starts, sweeps and bounces
-//! the lanes in the formats of [`lanes`](super::lanes), and [`store`] writes the
+//! the lanes in the formats of [`lanes`](super::lanes), and [`mod@store`] writes the
 //! impulses back in N·s.
 
 mod kernel;
