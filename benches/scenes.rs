@@ -95,24 +95,27 @@ fn narrow_phase(name: &str, w: &World<'_>) -> Result<(), arphysics::Error> {
     Ok(())
 }
 
+/// A scene built and stepped 30 times (the warm-up before any sample).
+fn warmed(build: Build, dt: Scalar) -> Result<World<'static>, arphysics::Error> {
+    let mut w = build()?;
+    for _ in 0..30 {
+        w.step(dt)?;
+    }
+    Ok(w)
+}
+
 /// One scene at two SIMD levels: two worlds built alike, one stepped with the
 /// contact and pivot kernels at `SimdLevel::Portable` (one lane at a time) and
 /// one at the best level this processor offers, `steps` steps a sample, the
 /// two in turn (each first in every other sample) so that both see the same
-/// load. The worlds stay bit-identical
-/// (the levels compute the same bits), which the state hashes at the end
-/// check. Prints each level's median thread CPU ms/step and the median of the
-/// per-sample ratios.
+/// load. The worlds stay bit-identical (the levels compute the same bits),
+/// which the state hashes at the end check. Prints each level's median thread
+/// CPU ms/step and the median of the per-sample ratios.
 fn levels(name: &str, build: Build, steps: usize, samples: usize) -> Result<(), arphysics::Error> {
     limit_simd_level(SimdLevel::Avx2);
     let best = simd_level();
     let dt = s(1.0 / 60.0);
-    let (mut portable, mut fast) = (build()?, build()?);
-    for w in [&mut portable, &mut fast] {
-        for _ in 0..30 {
-            w.step(dt)?;
-        }
-    }
+    let (mut portable, mut fast) = (warmed(build, dt)?, warmed(build, dt)?);
     let run = |w: &mut World<'_>, level: SimdLevel| -> Result<Option<f64>, arphysics::Error> {
         limit_simd_level(level);
         let c0 = thread_cpu_ns();
@@ -140,19 +143,19 @@ fn levels(name: &str, build: Build, steps: usize, samples: usize) -> Result<(), 
         ratio.push(tp / tf);
     }
     limit_simd_level(SimdLevel::Avx2);
-    let median = |v: &mut Vec<f64>| {
+    for v in [&mut p, &mut f, &mut ratio] {
         v.sort_by(f64::total_cmp);
-        v[v.len() / 2]
-    };
+    }
+    let median = |v: &[f64]| v[v.len() / 2];
     let same = portable.state_hash() == fast.state_hash();
     println!(
         "{name:>14}: Portable {:.3} ms/step, {best:?} {:.3} ms/step (thread CPU, medians of {samples}); \
          Portable / {best:?} {:.2} (median of the samples' ratios, {:.2}–{:.2}); state hashes {}",
-        median(&mut p),
-        median(&mut f),
-        median(&mut ratio.clone()),
-        ratio.iter().copied().fold(f64::INFINITY, f64::min),
-        ratio.iter().copied().fold(0.0, f64::max),
+        median(&p),
+        median(&f),
+        median(&ratio),
+        ratio[0],
+        ratio[ratio.len() - 1],
         if same { "equal" } else { "DIFFER" },
     );
     assert!(same, "{name}: the SIMD levels stepped to different states");
@@ -185,10 +188,7 @@ fn main() -> Result<(), arphysics::Error> {
             levels(name, build, steps * 5, if quick { 1 } else { samples })?;
             continue;
         }
-        let mut w = build()?;
-        for _ in 0..30 {
-            w.step(dt)?;
-        }
+        let mut w = warmed(build, dt)?;
         let samples = if quick { 1 } else { samples };
         let mut times = Vec::new();
         let mut cpu = Vec::new();
